@@ -1,0 +1,107 @@
+#pragma once
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+
+#include <anvil/core/scene.h>
+#include <anvil/geometry/geometry.h>
+#include <anvil/mechanics/boundary_conditions.h>
+#include <anvil/mechanics/mechanical_problem.h>
+#include <anvil/output/csv_history.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace anvil
+{
+  /**
+   * One simulation of a scene: builds the mesh and the physics the scene
+   * switched on, runs the time loop with cut-back and re-growth of the step,
+   * writes fields, histories and summary.json.
+   */
+  template <int dim>
+  class Simulator
+  {
+  public:
+    /// Every parameter of a scene of this dimension with these bodies.
+    static void declare_parameters(dealii::ParameterHandler       &prm,
+                                   const std::vector<std::string> &body_names);
+
+    /// Parse the scene and check it against the mesh; throws InputError.
+    Simulator(Scene &scene, MPI_Comm communicator);
+    ~Simulator();
+
+    /// Run the time loop. Throws SimulationError if a step cannot be recovered
+    /// (after writing the last converged state and summary.json).
+    void run();
+
+    /// The output directory of this run.
+    const std::string &output_directory() const { return output_dir; }
+
+    /// Quantities of interest as evaluated at the end of the run (name, value).
+    const std::vector<std::pair<std::string, double>> &quantities_of_interest() const
+    {
+      return qoi_values;
+    }
+
+    const MechanicalProblem<dim> &mechanics() const { return *mechanical; }
+
+  private:
+    struct TimeParameters
+    {
+      double end_time, time_step, minimum_time_step, maximum_time_step, growth_factor;
+      unsigned int easy_iterations;
+    };
+    struct Probe
+    {
+      std::string        name;
+      dealii::Point<dim> point;
+    };
+    struct Quantity
+    {
+      std::string name, kind, target, field;
+      dealii::types::boundary_id boundary = 0;
+      int                        body     = -1;
+      unsigned int               component = 0;
+    };
+
+    void parse_output(dealii::ParameterHandler &prm, Scene &scene);
+    void open_histories();
+    void write_histories(double time, unsigned int step);
+    void write_fields(double time, unsigned int step);
+    void evaluate_quantities();
+    void write_summary(const std::string &status);
+
+    Scene                                       &scene;
+    MPI_Comm                                     mpi_communicator;
+    dealii::ConditionalOStream                   pcout;
+    dealii::TimerOutput                          timer;
+    dealii::parallel::distributed::Triangulation<dim> triangulation;
+    Geometry<dim>                                geometry;
+    BoundaryConditions<dim>                      boundary_conditions;
+    typename MechanicalProblem<dim>::Parameters  mechanics_parameters;
+    std::map<dealii::types::material_id, std::shared_ptr<const MaterialModel>> materials;
+    std::unique_ptr<MechanicalProblem<dim>>      mechanical;
+    TimeParameters                               time;
+
+    std::string           output_dir;
+    unsigned int          output_interval = 1;
+    bool                  quiet           = false;
+    std::vector<Probe>    probes;
+    std::vector<Quantity> quantities;
+    std::vector<std::pair<std::string, double>> qoi_values;
+    std::vector<std::pair<double, std::string>> pvd_records;
+    CsvHistory reactions_csv, probes_csv, energy_csv, newton_csv;
+    std::vector<std::pair<std::string, dealii::types::boundary_id>> reaction_boundaries;
+
+    unsigned int n_steps = 0, n_cut_backs = 0, n_newton = 0, n_linear = 0;
+    double       current_time = 0;
+    double       wall_start   = 0;
+  };
+
+  /// The program: parse the command line, read the scene, dispatch on dimension.
+  int run_anvil(int argc, char **argv);
+} // namespace anvil

@@ -1,0 +1,138 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace anvil
+{
+  /**
+   * What a caller wants from a material point update, like FEValues' update
+   * flags: the mechanics asks for stress and tangent, the heat equation for
+   * dissipation. Nothing that is not requested is computed.
+   */
+  enum MaterialRequest : unsigned int
+  {
+    request_stress                 = 1,
+    request_tangent                = 2,
+    request_temperature_derivative = 4,
+    request_dissipation            = 8,
+  };
+
+  inline MaterialRequest operator|(MaterialRequest a, MaterialRequest b)
+  {
+    return static_cast<MaterialRequest>(static_cast<unsigned int>(a) | static_cast<unsigned int>(b));
+  }
+
+  /**
+   * One increment [t_n, t_n+1] seen by a material point. Tensors are always
+   * 3x3: plane strain and axisymmetric problems embed their 2x2 kinematics
+   * (zero or hoop out-of-plane component), so the laws never depend on dim.
+   */
+  struct MaterialIncrement
+  {
+    /// Incremental strain Δε = sym(ΔL), ΔL = ∂Δu/∂x at the mid-point configuration.
+    dealii::SymmetricTensor<2, 3> strain_increment;
+    /// Incremental rotation ΔR (Hughes–Winget: (I - ½Δω)⁻¹(I + ½Δω)); rotates σ_n.
+    dealii::Tensor<2, 3> rotation_increment = dealii::unit_symmetric_tensor<3>();
+    double               temperature           = 293.;
+    double               temperature_increment = 0.;
+    double               time_step             = 1.;
+  };
+
+  /**
+   * What an update returns. σ = M(σ̃_n, Δε, T) with σ̃_n = ΔR σ_n ΔRᵀ the
+   * rotated previous stress; the mechanics linearises the rotation itself and
+   * needs ∂σ/∂Δε (`tangent`) and ∂σ/∂σ̃_n (`rotated_stress_sensitivity`,
+   * identity for hypoelasticity, so it is flagged rather than stored).
+   */
+  struct MaterialResponse
+  {
+    dealii::SymmetricTensor<2, 3> stress;
+    dealii::SymmetricTensor<4, 3> tangent;
+    bool                          sensitivity_is_identity = true;
+    dealii::SymmetricTensor<4, 3> rotated_stress_sensitivity;
+    dealii::SymmetricTensor<2, 3> stress_temperature_derivative;
+    /// χ·σ̄·ε̄̇ᵛᵖ (eq. 21) in MPa/s = mW/mm³.
+    double plastic_dissipation_rate = 0.;
+    /// Ẇthel (eq. 22), sign from thermodynamics (doc/thermodynamics.md).
+    double thermoelastic_heating_rate = 0.;
+    /// Equivalent (visco)plastic strain after the increment.
+    double equivalent_plastic_strain = 0.;
+  };
+
+  /**
+   * The state of one quadrature point and the law that updates it. The law's
+   * parameters live in a shared MaterialModel; a point only holds state.
+   *
+   * update() always starts from the committed state (t_n), so Newton may call
+   * it any number of times; commit() accepts the step, revert() forgets it.
+   */
+  class MaterialPoint
+  {
+  public:
+    virtual ~MaterialPoint() = default;
+
+    virtual void update(const MaterialIncrement &increment,
+                        MaterialRequest          request,
+                        MaterialResponse        &response) = 0;
+
+    /// Accept the last update as the state at t_n+1.
+    virtual void commit() = 0;
+    /// Forget every update since the last commit (time step cut back).
+    virtual void revert() = 0;
+
+    /// Cauchy stress of the last update (committed or not).
+    virtual const dealii::SymmetricTensor<2, 3> &stress() const = 0;
+    /// Stress at t_n (committed).
+    virtual const dealii::SymmetricTensor<2, 3> &committed_stress() const = 0;
+    virtual double equivalent_plastic_strain() const { return 0.; }
+
+    /// Set the committed stress (initial stress states).
+    virtual void set_stress(const dealii::SymmetricTensor<2, 3> &stress) = 0;
+
+    /// State as a flat list of numbers (checkpoints) and back.
+    virtual std::vector<double> save_state() const = 0;
+    virtual void                load_state(const std::vector<double> &state) = 0;
+  };
+
+  /**
+   * A material law with its parameters: declared and parsed from one
+   * subsection, shared by the points of one body.
+   */
+  class MaterialModel
+  {
+  public:
+    virtual ~MaterialModel() = default;
+
+    virtual std::unique_ptr<MaterialPoint> create_point() const = 0;
+
+    /// Small-strain elastic moduli (for the tangent's scale, stable time steps, AMG).
+    virtual double bulk_modulus() const  = 0;
+    virtual double shear_modulus() const = 0;
+    virtual double density() const      = 0;
+    virtual std::string name() const     = 0;
+  };
+
+  class Scene;
+
+  /**
+   * The factory: `subsection Material` with `set Model = hypoelastic | ...`
+   * and one subsection per model. Declares every registered model's
+   * parameters; create() builds the selected one and checks its ranges
+   * (errors via scene.fail with the entry's full path).
+   */
+  namespace MaterialFactory
+  {
+    void declare_parameters(dealii::ParameterHandler &prm);
+
+    /// @p path_prefix is the subsection path of this material, e.g. "Bodies/upper/Material".
+    std::shared_ptr<const MaterialModel> create(dealii::ParameterHandler &prm,
+                                                const Scene              &scene,
+                                                const std::string        &path_prefix);
+  } // namespace MaterialFactory
+} // namespace anvil

@@ -1,0 +1,62 @@
+#pragma once
+
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include <anvil/material/material_point.h>
+
+namespace anvil
+{
+  /**
+   * Incremental kinematics of one quadrature point over [t_n, t_n+1]
+   * (Hughes & Winget 1980), the strain measure behind the incrementally
+   * objective update of eq. (9):
+   *
+   *   F_½ = ½(F + F_n),  ΔL = (F − F_n) F_½⁻¹   (gradient of Δu at the mid-point),
+   *   Δε = sym ΔL,  Δω = skew ΔL,  ΔR = (I − ½Δω)⁻¹ (I + ½Δω).
+   *
+   * A rigid rotation of any angle below 180° gives Δε = 0 and ΔR equal to that
+   * rotation exactly (ΔR is the Cayley transform of ½Δω); a sequence of small
+   * increments integrates the Jaumann rate with second-order accuracy.
+   *
+   * F is 3x3 always: plane strain embeds the 2x2 gradient with F₃₃ = 1.
+   */
+  struct IncrementalKinematics
+  {
+    void reinit(const dealii::Tensor<2, 3> &F, const dealii::Tensor<2, 3> &F_old);
+
+    dealii::Tensor<2, 3>          F, F_inv, F_half_inv, dL, A_inv;
+    double                        J = 1.;
+    dealii::SymmetricTensor<2, 3> strain_increment;
+    dealii::Tensor<2, 3>          rotation_increment;
+  };
+
+  /**
+   * The first Piola–Kirchhoff stress P = J σ F⁻ᵀ, whose divergence over the
+   * reference mesh equals the divergence of σ over the current one: the
+   * residual ∫ σ : ∇ₓδv dv of the updated-Lagrangian form is evaluated as
+   * ∫ P : ∇_X δv dV without moving the mesh.
+   */
+  dealii::Tensor<2, 3> first_piola_stress(const IncrementalKinematics          &kin,
+                                          const dealii::SymmetricTensor<2, 3> &cauchy);
+
+  /**
+   * The exact derivative A = ∂P/∂F (only the in-plane block for dim = 2) of
+   * the discrete update above, given the material's ∂σ/∂Δε and ∂σ/∂σ̃_n:
+   *
+   *   δΔL = (I − ½ΔL) δF F_½⁻¹,   δΔR = ½ A⁻¹ skew(δΔL) (I + ΔR),
+   *   δσ̃  = δΔR σ_n ΔRᵀ + ΔR σ_n δΔRᵀ,
+   *   δσ  = C_alg : sym(δΔL) + S : δσ̃,
+   *   δP  = J [ tr(δF F⁻¹) σ F⁻ᵀ + δσ F⁻ᵀ − σ F⁻ᵀ δFᵀ F⁻ᵀ ].
+   *
+   * Consistent with the residual, so Newton converges quadratically.
+   */
+  template <int dim>
+  dealii::Tensor<4, dim> first_piola_tangent(const IncrementalKinematics          &kin,
+                                             const dealii::SymmetricTensor<2, 3> &stress_old,
+                                             const MaterialResponse              &response);
+
+  /// Embed a dim x dim tensor in 3x3 (identity in the missing directions for F).
+  template <int dim>
+  dealii::Tensor<2, 3> embed(const dealii::Tensor<2, dim> &t, double out_of_plane);
+} // namespace anvil

@@ -1,0 +1,155 @@
+#pragma once
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <anvil/material/material_point.h>
+#include <anvil/mechanics/boundary_conditions.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace anvil
+{
+  class Scene;
+
+  /**
+   * The mechanical half: quasi-static equilibrium div σ = 0 at finite strain,
+   * updated-Lagrangian in its constitutive update (Hughes–Winget increments on
+   * the mid-point configuration, see kinematics.h) and solved by Newton–Raphson
+   * with the exact tangent of the discrete residual and a backtracking line
+   * search. Plane strain for dim = 2, 3D for dim = 3.
+   *
+   * Integrals over the current configuration ∫ σ : ∇ₓδv dv are evaluated on
+   * the reference mesh as ∫ P : ∇_X δv dV (P = Jσ F⁻ᵀ); the mesh does not move,
+   * the displacement is the unknown.
+   */
+  template <int dim>
+  class MechanicalProblem
+  {
+  public:
+    struct Parameters
+    {
+      unsigned int polynomial_degree            = 1;
+      unsigned int max_iterations               = 15;
+      double       residual_tolerance           = 1e-8;
+      double       absolute_residual_tolerance  = 1e-12;
+      double       displacement_tolerance       = 1e-8;
+      bool         line_search                  = true;
+      std::string  linear_solver                = "automatic";
+      double       linear_tolerance             = 1e-10;
+      unsigned int linear_max_iterations        = 1000;
+      unsigned int direct_solver_limit          = 200000;
+
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void        parse_parameters(dealii::ParameterHandler &prm, const Scene &scene);
+    };
+
+    /// What one time step's Newton solve did.
+    struct StepResult
+    {
+      bool                converged = false;
+      std::string         failure; // why not, one line
+      unsigned int        iterations        = 0;
+      unsigned int        linear_iterations = 0;
+      std::vector<double> residuals;  // |R| per iteration (free dofs), N
+      std::vector<double> increments; // |δu| per iteration, mm
+      std::vector<double> line_search_steps;
+    };
+
+    /// Per-cell fields for output (cell averages over quadrature points).
+    struct CellFields
+    {
+      std::vector<std::string>                 names;
+      std::vector<dealii::Vector<float>>       values;
+    };
+
+    MechanicalProblem(const dealii::parallel::distributed::Triangulation<dim>           &triangulation,
+                      const Parameters                                                     &parameters,
+                      const BoundaryConditions<dim>                                        &boundary_conditions,
+                      const std::map<dealii::types::material_id, std::shared_ptr<const MaterialModel>> &materials,
+                      dealii::TimerOutput                                                  &timer);
+
+    void setup();
+
+    /// Solve for the configuration at @p time_new from the committed one at @p time_old.
+    StepResult solve_step(double time_old, double time_new);
+
+    /// Accept the last solve: material points commit, work and reactions are accumulated.
+    void commit_step();
+    /// Forget the last solve (time step cut back).
+    void revert_step();
+
+    dealii::types::global_dof_index n_dofs() const { return dof_handler.n_dofs(); }
+    const dealii::DoFHandler<dim>   &get_dof_handler() const { return dof_handler; }
+    const dealii::TrilinosWrappers::MPI::Vector &displacement() const { return solution; }
+    const dealii::Mapping<dim>      &get_mapping() const { return mapping; }
+
+    /// Reaction force on the named boundary (force the support exerts on the body), N.
+    dealii::Tensor<1, dim> reaction(dealii::types::boundary_id boundary) const;
+
+    /// Work of all external forces and supports (trapezoidal in time), N·mm.
+    double external_work() const { return work_external; }
+    /// ∫∫ σ : D dv dt (mid-point stress power), N·mm.
+    double internal_work() const { return work_internal; }
+
+    /// Averages per locally owned cell: stress components, von Mises, pressure, J, ε̄ᵖ.
+    CellFields cell_fields() const;
+
+    /// Displacement and cell-average stress at a point of the reference mesh.
+    bool probe(const dealii::Point<dim>      &point,
+               dealii::Tensor<1, dim>        &displacement,
+               dealii::SymmetricTensor<2, 3> &stress) const;
+
+    /// Cells per second of the last full (matrix + residual) assembly on this rank.
+    double last_assembly_rate() const { return assembly_rate; }
+    std::size_t memory_consumption() const;
+
+  private:
+    void setup_quadrature_point_data();
+    /// Assemble −R into system_rhs (and K if @p with_matrix); false if an element inverted.
+    bool assemble(bool with_matrix, double time);
+    unsigned int solve_linear_system(dealii::TrilinosWrappers::MPI::Vector &du);
+    double       residual_norm() const;
+
+    MPI_Comm                                                 mpi_communicator;
+    const dealii::parallel::distributed::Triangulation<dim> &triangulation;
+    const Parameters                                         parameters;
+    const BoundaryConditions<dim>                           &boundary_conditions;
+    std::map<dealii::types::material_id, std::shared_ptr<const MaterialModel>> materials;
+    dealii::TimerOutput                                     &timer;
+
+    dealii::FESystem<dim>     fe;
+    dealii::MappingQ<dim>     mapping;
+    dealii::DoFHandler<dim>   dof_handler;
+    dealii::QGauss<dim>       quadrature;
+    dealii::QGauss<dim - 1>   face_quadrature;
+    dealii::IndexSet          locally_owned_dofs, locally_relevant_dofs;
+    dealii::AffineConstraints<double> constraints; // homogeneous: Newton updates
+
+    dealii::TrilinosWrappers::SparseMatrix system_matrix;
+    dealii::TrilinosWrappers::MPI::Vector  system_rhs;          // −R, constrained entries 0
+    dealii::TrilinosWrappers::MPI::Vector  internal_force;      // f_int, all entries
+    dealii::TrilinosWrappers::MPI::Vector  internal_force_old;
+    dealii::TrilinosWrappers::MPI::Vector  external_force;      // f_ext (pressures)
+    dealii::TrilinosWrappers::MPI::Vector  solution, old_solution;       // ghosted
+    dealii::TrilinosWrappers::MPI::Vector  owned_solution, owned_old_solution;
+
+    // One material point per quadrature point of each locally owned cell,
+    // indexed by active_cell_index * n_q_points + q.
+    std::vector<std::unique_ptr<MaterialPoint>> points;
+    double step_internal_work = 0, work_internal = 0, work_external = 0;
+    double assembly_rate = 0;
+  };
+} // namespace anvil

@@ -1,0 +1,7 @@
+// anvil: the command-line program. Everything lives in libanvil.
+#include <anvil/core/simulator.h>
+
+int main(int argc, char **argv)
+{
+  return anvil::run_anvil(argc, argv);
+}

@@ -1,0 +1,142 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/utilities.h>
+
+#include <anvil/core/input_error.h>
+#include <anvil/core/simulator.h>
+
+#include <iostream>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  namespace
+  {
+    const char *usage =
+      "usage: anvil SCENE.prm [--set 'Section/Entry=value']... [--check]\n"
+      "       anvil --print-parameters [SCENE.prm]   every parameter as a .prm file\n"
+      "       anvil --help                           this text and every parameter, documented\n"
+      "\n"
+      "  SCENE.prm      the scene to run (deal.II ParameterHandler format)\n"
+      "  --set P=V      override entry P (a path like 'Time/End time') with V; repeatable\n"
+      "  --check        read and check the scene and its mesh, then stop\n"
+      "Units: mm, N, s, K (stresses in MPa). Results go to Output/Directory.\n"
+      "Exit status: 0 done, 2 bad input, 3 the simulation could not be completed.\n";
+
+    template <int dim>
+    void declare(ParameterHandler &prm, const std::vector<std::string> &bodies)
+    {
+      Simulator<dim>::declare_parameters(prm, bodies);
+    }
+
+    void read_scene(Scene &scene)
+    {
+      scene.read_shape();
+      if (scene.dimension() == 2)
+        scene.read(declare<2>);
+      else
+        scene.read(declare<3>);
+    }
+  } // namespace
+
+  int run_anvil(int argc, char **argv)
+  {
+    Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+    const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+
+    std::string                                        filename;
+    std::vector<std::pair<std::string, std::string>> overrides;
+    bool help = false, print = false, check = false;
+    try
+      {
+        for (int i = 1; i < argc; ++i)
+          {
+            const std::string a = argv[i];
+            if (a == "--help" || a == "-h")
+              help = true;
+            else if (a == "--print-parameters")
+              print = true;
+            else if (a == "--check")
+              check = true;
+            else if (a == "--set")
+              {
+                if (i + 1 >= argc)
+                  throw InputError("--set: expected 'Section/Entry=value' after it");
+                overrides.push_back(Scene::parse_override(argv[++i]));
+              }
+            else if (a.rfind("--set=", 0) == 0)
+              overrides.push_back(Scene::parse_override(a.substr(6)));
+            else if (a.rfind("-", 0) == 0)
+              throw InputError("unknown option '" + a + "' (see anvil --help)");
+            else if (filename.empty())
+              filename = a;
+            else
+              throw InputError("more than one scene file given ('" + filename + "' and '" + a + "')");
+          }
+
+        if (help || print)
+          {
+            Scene scene = filename.empty() ? Scene() : Scene(filename, overrides);
+            read_scene(scene);
+            if (root)
+              {
+                if (help)
+                  std::cout << usage << "\nParameters (with defaults, patterns and documentation):\n\n";
+                scene.parameters().print_parameters(std::cout, help ? ParameterHandler::Text
+                                                                    : ParameterHandler::PRM);
+              }
+            return 0;
+          }
+        if (filename.empty())
+          {
+            if (root)
+              std::cerr << usage;
+            return 2;
+          }
+
+        Scene scene(filename, overrides);
+        read_scene(scene);
+        if (scene.dimension() == 2)
+          {
+            Simulator<2> simulator(scene, MPI_COMM_WORLD);
+            if (check)
+              {
+                if (root)
+                  std::cout << "anvil: " << filename << " is valid" << std::endl;
+                return 0;
+              }
+            simulator.run();
+          }
+        else
+          {
+            Simulator<3> simulator(scene, MPI_COMM_WORLD);
+            if (check)
+              {
+                if (root)
+                  std::cout << "anvil: " << filename << " is valid" << std::endl;
+                return 0;
+              }
+            simulator.run();
+          }
+      }
+    catch (const InputError &e)
+      {
+        if (root)
+          std::cerr << "anvil: error: " << e.what() << std::endl;
+        return 2;
+      }
+    catch (const SimulationError &e)
+      {
+        if (root)
+          std::cerr << "anvil: simulation stopped: " << e.what() << std::endl;
+        return 3;
+      }
+    catch (const std::exception &e)
+      {
+        std::cerr << "anvil: internal error: " << e.what() << std::endl;
+        return 1;
+      }
+    return 0;
+  }
+} // namespace anvil

@@ -1,0 +1,222 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
+#include <anvil/core/input_error.h>
+#include <anvil/core/simulator.h>
+#include <anvil/material/material_point.h>
+
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  template <int dim>
+  void Simulator<dim>::declare_parameters(ParameterHandler               &prm,
+                                          const std::vector<std::string> &body_names)
+  {
+    Scene::declare_shape_parameters(prm);
+    prm.enter_subsection("Bodies");
+    for (const auto &name : body_names)
+      {
+        prm.enter_subsection(name);
+        MaterialFactory::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+
+    Geometry<dim>::declare_parameters(prm);
+    MechanicalProblem<dim>::Parameters::declare_parameters(prm);
+    BoundaryConditions<dim>::declare_parameters(prm);
+
+    prm.enter_subsection("Time");
+    prm.declare_entry("End time", "1", Patterns::Double(0), "End of the simulated interval, s.");
+    prm.declare_entry("Time step", "0.1", Patterns::Double(0), "First time step, s.");
+    prm.declare_entry("Minimum time step", "0", Patterns::Double(0),
+                      "Smallest step the cut-back may reach, s; 0 means Time step / 1024.");
+    prm.declare_entry("Maximum time step", "0", Patterns::Double(0),
+                      "Largest step the re-growth may reach, s; 0 means Time step.");
+    prm.declare_entry("Growth factor", "1.5", Patterns::Double(1),
+                      "Factor by which the step grows after an easy step (dimensionless).");
+    prm.declare_entry("Easy step iterations", "4", Patterns::Integer(0),
+                      "A step that converged in at most this many Newton iterations is easy.");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    prm.declare_entry("Directory", "", Patterns::Anything(),
+                      "Where fields, histories and summary.json go; empty means "
+                      "output/<scene name> in the working directory.");
+    prm.declare_entry("Field interval", "1", Patterns::Integer(0),
+                      "Write VTU fields every this many steps (0: only the first and last).");
+    prm.declare_entry("Probes", "", Patterns::Anything(),
+                      "Named points of the reference configuration, mm: "
+                      "'name: x, y[, z]; name2: ...'. Their displacement and stress are "
+                      "written to probes.csv.");
+    prm.declare_entry("Quantities of interest", "", Patterns::Anything(),
+                      "Named results written to summary.json at the end: 'name: expr; ...' with "
+                      "expr one of reaction(boundary, x|y|z) [N], probe(name, ux|uy|uz|<field>), "
+                      "max(<field>), min(<field>), mean(<field>[, body]) where <field> is a cell "
+                      "field: stress_xx..stress_zz, von_mises, pressure [MPa], J, "
+                      "equivalent_plastic_strain.");
+    prm.declare_entry("Verbosity", "normal", Patterns::Selection("normal|quiet"),
+                      "normal: one line per step and a timing table; quiet: errors only.");
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  Simulator<dim>::Simulator(Scene &scene, MPI_Comm communicator)
+    : scene(scene)
+    , mpi_communicator(communicator)
+    , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
+    , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
+    , triangulation(communicator)
+  {
+    auto &prm = scene.parameters();
+    geometry.parse_parameters(prm, scene);
+
+    // Bodies: every mesh body needs a material, every listed body must exist.
+    for (const auto &[name, id] : geometry.body_names())
+      if (std::find(scene.body_names().begin(), scene.body_names().end(), name) ==
+          scene.body_names().end())
+        scene.fail("Bodies/Names", "does not list the mesh body '" + name +
+                                     "' (the mesh has: " + geometry.list_body_names() + ")");
+    prm.enter_subsection("Bodies");
+    for (const auto &name : scene.body_names())
+      {
+        const auto id = geometry.body_id(name, scene.where("Bodies/Names"));
+        prm.enter_subsection(name);
+        materials[id] = MaterialFactory::create(prm, scene, "Bodies/" + name);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+
+    mechanics_parameters.parse_parameters(prm, scene);
+    boundary_conditions.parse_parameters(prm, scene, geometry);
+
+    prm.enter_subsection("Time");
+    time.end_time          = prm.get_double("End time");
+    time.time_step         = prm.get_double("Time step");
+    time.minimum_time_step = prm.get_double("Minimum time step");
+    time.maximum_time_step = prm.get_double("Maximum time step");
+    time.growth_factor     = prm.get_double("Growth factor");
+    time.easy_iterations   = prm.get_integer("Easy step iterations");
+    prm.leave_subsection();
+    if (!(time.time_step > 0))
+      scene.fail("Time/Time step", "must be > 0 s");
+    if (time.minimum_time_step == 0)
+      time.minimum_time_step = time.time_step / 1024;
+    if (time.maximum_time_step == 0)
+      time.maximum_time_step = time.time_step;
+    if (time.minimum_time_step > time.time_step)
+      scene.fail("Time/Minimum time step", "must not exceed Time step");
+
+    parse_output(prm, scene);
+  }
+
+  template <int dim>
+  Simulator<dim>::~Simulator() = default;
+
+  template <int dim>
+  void Simulator<dim>::run()
+  {
+    wall_start = MPI_Wtime();
+    {
+      TimerOutput::Scope t(timer, "Mesh");
+      geometry.create(triangulation);
+    }
+    mechanical = std::make_unique<MechanicalProblem<dim>>(triangulation, mechanics_parameters,
+                                                          boundary_conditions, materials, timer);
+    mechanical->setup();
+
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      std::filesystem::create_directories(output_dir + "/fields");
+    MPI_Barrier(mpi_communicator);
+    if (!quiet)
+      pcout << "anvil: " << scene.filename() << ", " << dim << "D, "
+            << triangulation.n_global_active_cells() << " cells, " << mechanical->n_dofs()
+            << " displacement DoFs, " << Utilities::MPI::n_mpi_processes(mpi_communicator)
+            << " process(es) -> " << output_dir << std::endl;
+
+    open_histories();
+    write_histories(0, 0);
+    write_fields(0, 0);
+
+    double       t  = 0;
+    double       dt = time.time_step;
+    const double eps = 1e-12 * time.end_time;
+    std::string  status = "completed";
+    while (t < time.end_time - eps)
+      {
+        const double step = std::min(dt, time.end_time - t);
+        const auto   result = mechanical->solve_step(t, t + step);
+        n_newton += result.iterations;
+        n_linear += result.linear_iterations;
+        for (unsigned int k = 0; k < result.residuals.size(); ++k)
+          newton_csv.add_row({double(n_steps + 1), t + step, double(k), result.residuals[k],
+                              k < result.increments.size() ? result.increments[k] : 0.,
+                              k < result.line_search_steps.size() ? result.line_search_steps[k] : 1.,
+                              result.converged ? 1. : 0.});
+        if (!result.converged)
+          {
+            mechanical->revert_step();
+            ++n_cut_backs;
+            dt = step / 2;
+            if (!quiet)
+              pcout << "  step at t = " << t + step << " s failed: " << result.failure
+                    << "; cutting back to dt = " << dt << " s" << std::endl;
+            if (dt < time.minimum_time_step * (1 - 1e-12))
+              {
+                status = "failed at t = " + Utilities::to_string(t + step) + " s: " +
+                         result.failure + "; minimum time step " +
+                         Utilities::to_string(time.minimum_time_step) + " s reached";
+                write_fields(t, n_steps);
+                write_summary(status);
+                throw SimulationError(status + " (last converged state written to " +
+                                      output_dir + ")");
+              }
+            continue;
+          }
+
+        mechanical->commit_step();
+        t            = t + step;
+        current_time = t;
+        ++n_steps;
+        write_histories(t, n_steps);
+        const bool last = t >= time.end_time - eps;
+        if (last || (output_interval > 0 && n_steps % output_interval == 0))
+          write_fields(t, n_steps);
+
+        if (!quiet)
+          {
+            const double elapsed = MPI_Wtime() - wall_start;
+            const double eta     = t > 0 ? elapsed / t * (time.end_time - t) : 0;
+            std::ostringstream line;
+            line << "step " << std::setw(5) << n_steps << "  t = " << std::scientific
+                 << std::setprecision(4) << t << " s  dt = " << std::setprecision(2) << step
+                 << " s  Newton " << std::setw(2) << result.iterations << " |R| "
+                 << std::setprecision(1) << result.residuals.front() << " -> "
+                 << result.residuals.back() << " N  ETA " << std::fixed << std::setprecision(1)
+                 << eta << " s";
+            pcout << line.str() << std::endl;
+          }
+        if (result.iterations <= time.easy_iterations)
+          dt = std::min(step * time.growth_factor, time.maximum_time_step);
+        else
+          dt = step;
+      }
+
+    evaluate_quantities();
+    write_summary(status);
+    if (!quiet)
+      {
+        timer.print_summary();
+        for (const auto &[name, value] : qoi_values)
+          pcout << "  " << name << " = " << std::setprecision(10) << value << std::endl;
+      }
+  }
+
+  template class Simulator<2>;
+  template class Simulator<3>;
+} // namespace anvil

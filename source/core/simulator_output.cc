@@ -1,0 +1,340 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/numerics/data_out.h>
+
+#include <anvil/core/input_error.h>
+#include <anvil/core/simulator.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  namespace
+  {
+    // "f(a, b)" -> ("f", {"a", "b"}); empty name if malformed.
+    std::pair<std::string, std::vector<std::string>> parse_call(const std::string &text)
+    {
+      const auto open  = text.find('(');
+      const auto close = text.rfind(')');
+      if (open == std::string::npos || close == std::string::npos || close < open)
+        return {"", {}};
+      return {trim(text.substr(0, open)),
+              split_outside_parentheses(text.substr(open + 1, close - open - 1), ',')};
+    }
+
+    double peak_memory_mb()
+    {
+      std::ifstream status("/proc/self/status");
+      std::string   line;
+      while (std::getline(status, line))
+        if (line.rfind("VmHWM:", 0) == 0)
+          return std::stod(line.substr(6)) / 1024.;
+      return 0;
+    }
+  } // namespace
+
+  template <int dim>
+  void Simulator<dim>::parse_output(ParameterHandler &prm, Scene &scene)
+  {
+    prm.enter_subsection("Output");
+    output_dir      = prm.get("Directory");
+    output_interval = prm.get_integer("Field interval");
+    quiet           = prm.get("Verbosity") == "quiet";
+    const std::string probe_text = prm.get("Probes");
+    const std::string qoi_text   = prm.get("Quantities of interest");
+    prm.leave_subsection();
+
+    if (output_dir.empty())
+      output_dir = "output/" + std::filesystem::path(scene.filename().empty() ? "anvil" : scene.filename())
+                                 .stem()
+                                 .string();
+
+    for (const auto &item : split_outside_parentheses(probe_text, ';'))
+      {
+        if (item.empty())
+          continue;
+        const auto colon = item.find(':');
+        Probe      p;
+        std::vector<std::string> coords;
+        if (colon != std::string::npos)
+          {
+            p.name = trim(item.substr(0, colon));
+            coords = split_outside_parentheses(item.substr(colon + 1), ',');
+          }
+        if (p.name.empty() || coords.size() != dim)
+          scene.fail("Output/Probes", "item '" + item + "': expected 'name: " +
+                                        (dim == 2 ? "x, y'" : "x, y, z'") + " in mm");
+        for (unsigned int d = 0; d < dim; ++d)
+          try
+            {
+              std::size_t used = 0;
+              p.point[d]       = std::stod(coords[d], &used);
+              if (used != coords[d].size())
+                throw std::invalid_argument("");
+            }
+          catch (...)
+            {
+              scene.fail("Output/Probes", "item '" + item + "': '" + coords[d] + "' is not a number");
+            }
+        probes.push_back(p);
+      }
+
+    const std::vector<std::string> fields = {"stress_xx", "stress_xy", "stress_xz", "stress_yy",
+                                             "stress_yz", "stress_zz", "von_mises", "pressure",
+                                             "J", "equivalent_plastic_strain"};
+    auto is_field = [&](const std::string &f) {
+      return std::find(fields.begin(), fields.end(), f) != fields.end();
+    };
+    const std::string qpath = "Output/Quantities of interest";
+    for (const auto &item : split_outside_parentheses(qoi_text, ';'))
+      {
+        if (item.empty())
+          continue;
+        const auto colon = item.find(':');
+        if (colon == std::string::npos)
+          scene.fail(qpath, "item '" + item + "': expected 'name: expression'");
+        Quantity q;
+        q.name                = trim(item.substr(0, colon));
+        const auto [f, args]  = parse_call(item.substr(colon + 1));
+        q.kind                = f;
+        auto component_of = [&](const std::string &c) -> unsigned int {
+          for (unsigned int d = 0; d < dim; ++d)
+            if (c == std::string(1, "xyz"[d]))
+              return d;
+          scene.fail(qpath, "item '" + item + "': component '" + c + "' should be x, y" +
+                              (dim == 3 ? " or z" : ""));
+        };
+        if (f == "reaction" && args.size() == 2)
+          {
+            q.target    = args[0];
+            q.boundary  = geometry.boundary_id(args[0], scene.where(qpath));
+            q.component = component_of(args[1]);
+          }
+        else if (f == "probe" && args.size() == 2)
+          {
+            q.target = args[0];
+            q.field  = args[1];
+            if (std::none_of(probes.begin(), probes.end(),
+                             [&](const Probe &p) { return p.name == args[0]; }))
+              scene.fail(qpath, "item '" + item + "': no probe named '" + args[0] +
+                                  "' in Output/Probes");
+            if (!is_field(q.field) && !(q.field.size() == 2 && q.field[0] == 'u'))
+              scene.fail(qpath, "item '" + item + "': unknown field '" + q.field + "'");
+            if (q.field[0] == 'u' && q.field.size() == 2)
+              q.component = component_of(q.field.substr(1));
+          }
+        else if ((f == "max" || f == "min") && args.size() == 1 && is_field(args[0]))
+          q.field = args[0];
+        else if (f == "mean" && (args.size() == 1 || args.size() == 2) && is_field(args[0]))
+          {
+            q.field = args[0];
+            if (args.size() == 2)
+              q.body = geometry.body_id(args[1], scene.where(qpath));
+          }
+        else
+          scene.fail(qpath, "item '" + item + "': expected reaction(boundary, x), "
+                              "probe(name, field), max(field), min(field) or mean(field[, body]) "
+                              "with a known field");
+        quantities.push_back(q);
+      }
+  }
+
+  template <int dim>
+  void Simulator<dim>::open_histories()
+  {
+    const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
+    // Reactions on every named boundary: what a user plots first.
+    std::vector<std::string> columns = {"step", "time"};
+    reaction_boundaries.clear();
+    for (const auto &[name, id] : geometry.boundary_names())
+      {
+        reaction_boundaries.emplace_back(name, id);
+        for (unsigned int d = 0; d < dim; ++d)
+          columns.push_back(name + "_F" + "xyz"[d]);
+      }
+    reactions_csv.open(output_dir + "/reactions.csv", columns, root);
+
+    if (!probes.empty())
+      {
+        columns = {"step", "time"};
+        for (const auto &p : probes)
+          {
+            for (unsigned int d = 0; d < dim; ++d)
+              columns.push_back(p.name + "_u" + "xyz"[d]);
+            for (const auto *c : {"xx", "yy", "zz", "xy", "yz", "xz"})
+              columns.push_back(p.name + "_stress_" + c);
+          }
+        probes_csv.open(output_dir + "/probes.csv", columns, root);
+      }
+    energy_csv.open(output_dir + "/energy.csv",
+                    {"step", "time", "external_work", "internal_work", "balance_error"}, root);
+    newton_csv.open(output_dir + "/newton.csv",
+                    {"step", "time", "iteration", "residual", "increment", "line_search", "converged"},
+                    root);
+  }
+
+  template <int dim>
+  void Simulator<dim>::write_histories(const double t, const unsigned int step)
+  {
+    TimerOutput::Scope  s(timer, "Output");
+    std::vector<double> row = {double(step), t};
+    for (const auto &[name, id] : reaction_boundaries)
+      {
+        const auto f = mechanical->reaction(id);
+        for (unsigned int d = 0; d < dim; ++d)
+          row.push_back(f[d]);
+      }
+    reactions_csv.add_row(row);
+
+    if (!probes.empty())
+      {
+        row = {double(step), t};
+        for (const auto &p : probes)
+          {
+            Tensor<1, dim>        u;
+            SymmetricTensor<2, 3> s;
+            mechanical->probe(p.point, u, s);
+            for (unsigned int d = 0; d < dim; ++d)
+              row.push_back(u[d]);
+            row.insert(row.end(), {s[0][0], s[1][1], s[2][2], s[0][1], s[1][2], s[0][2]});
+          }
+        probes_csv.add_row(row);
+      }
+    const double we = mechanical->external_work(), wi = mechanical->internal_work();
+    energy_csv.add_row({double(step), t, we, wi,
+                        std::abs(we - wi) / std::max({std::abs(we), std::abs(wi), 1e-300})});
+  }
+
+  template <int dim>
+  void Simulator<dim>::write_fields(const double t, const unsigned int step)
+  {
+    TimerOutput::Scope s(timer, "Output");
+    DataOut<dim>       data_out;
+    data_out.attach_dof_handler(mechanical->get_dof_handler());
+    std::vector<DataComponentInterpretation::DataComponentInterpretation> interpretation(
+      dim, DataComponentInterpretation::component_is_part_of_vector);
+    data_out.add_data_vector(mechanical->displacement(),
+                             std::vector<std::string>(dim, "displacement"),
+                             DataOut<dim>::type_dof_data, interpretation);
+    const auto fields = mechanical->cell_fields();
+    for (unsigned int i = 0; i < fields.names.size(); ++i)
+      data_out.add_data_vector(fields.values[i], fields.names[i], DataOut<dim>::type_cell_data);
+    Vector<float> rank(triangulation.n_active_cells());
+    rank = Utilities::MPI::this_mpi_process(mpi_communicator);
+    data_out.add_data_vector(rank, "rank", DataOut<dim>::type_cell_data);
+    data_out.build_patches(mechanical->get_mapping());
+    const std::string name = data_out.write_vtu_with_pvtu_record(output_dir + "/fields/",
+                                                                 "solution", step,
+                                                                 mpi_communicator, 5);
+    // Replace a record at the same time (a final write after a failure).
+    if (!pvd_records.empty() && pvd_records.back().first == t)
+      pvd_records.pop_back();
+    pvd_records.emplace_back(t, "fields/" + name);
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        std::ofstream pvd(output_dir + "/solution.pvd");
+        DataOutBase::write_pvd_record(pvd, pvd_records);
+      }
+  }
+
+  template <int dim>
+  void Simulator<dim>::evaluate_quantities()
+  {
+    qoi_values.clear();
+    if (quantities.empty())
+      return;
+    const auto fields = mechanical->cell_fields();
+    auto field_index  = [&](const std::string &f) {
+      return std::find(fields.names.begin(), fields.names.end(), f) - fields.names.begin();
+    };
+    for (const auto &q : quantities)
+      {
+        double value = 0;
+        if (q.kind == "reaction")
+          value = mechanical->reaction(q.boundary)[q.component];
+        else if (q.kind == "probe")
+          {
+            const auto &p = *std::find_if(probes.begin(), probes.end(),
+                                          [&](const Probe &p) { return p.name == q.target; });
+            Tensor<1, dim>        u;
+            SymmetricTensor<2, 3> s;
+            mechanical->probe(p.point, u, s);
+            if (q.field[0] == 'u' && q.field.size() == 2)
+              value = u[q.component];
+            else
+              {
+                // The probe's cell average; evaluated from the stress tensor.
+                const auto dev = deviator(s);
+                if (q.field == "von_mises")
+                  value = std::sqrt(1.5 * (dev * dev));
+                else if (q.field == "pressure")
+                  value = -trace(s) / 3;
+                else if (q.field.rfind("stress_", 0) == 0)
+                  value = s[q.field[7] - 'x'][q.field[8] - 'x'];
+              }
+          }
+        else
+          {
+            const auto   &v   = fields.values[field_index(q.field)];
+            double        sum = 0, volume = 0;
+            double        extreme = q.kind == "max" ? -1e300 : 1e300;
+            for (const auto &cell : triangulation.active_cell_iterators())
+              if (cell->is_locally_owned() &&
+                  (q.body < 0 || cell->material_id() == types::material_id(q.body)))
+                {
+                  const double x = v[cell->active_cell_index()];
+                  sum += x * cell->measure();
+                  volume += cell->measure();
+                  extreme = q.kind == "max" ? std::max(extreme, x) : std::min(extreme, x);
+                }
+            if (q.kind == "mean")
+              value = Utilities::MPI::sum(sum, mpi_communicator) /
+                      Utilities::MPI::sum(volume, mpi_communicator);
+            else if (q.kind == "max")
+              value = Utilities::MPI::max(extreme, mpi_communicator);
+            else
+              value = Utilities::MPI::min(extreme, mpi_communicator);
+          }
+        qoi_values.emplace_back(q.name, value);
+      }
+  }
+
+  template <int dim>
+  void Simulator<dim>::write_summary(const std::string &status)
+  {
+    Summary s;
+    s.set("scene", scene.filename());
+    s.set("status", status);
+    s.set("dimension", dim);
+    s.set("processes", Utilities::MPI::n_mpi_processes(mpi_communicator));
+    s.set("cells", triangulation.n_global_active_cells());
+    s.set("dofs", mechanical->n_dofs());
+    s.set("time", current_time);
+    s.set("steps", n_steps);
+    s.set("cut_backs", n_cut_backs);
+    s.set("newton_iterations", n_newton);
+    s.set("linear_iterations", n_linear);
+    s.set("wall_time", MPI_Wtime() - wall_start);
+    for (const auto &[section, seconds] : timer.get_summary_data(TimerOutput::total_wall_time))
+      s.set("wall_time_per_phase", section, Utilities::MPI::max(seconds, mpi_communicator));
+    const double assembly = Utilities::MPI::min(mechanical->last_assembly_rate(), mpi_communicator);
+    s.set("assembly_cells_per_second_per_process", assembly);
+    const double memory = Utilities::MPI::sum(peak_memory_mb(), mpi_communicator);
+    s.set("peak_memory_MB", memory);
+    s.set("memory_per_dof_bytes", memory * 1024. * 1024. / std::max<double>(1, mechanical->n_dofs()));
+    const double we = mechanical->external_work(), wi = mechanical->internal_work();
+    s.set("energy", "external_work", we);
+    s.set("energy", "internal_work", wi);
+    s.set("energy", "balance_error", std::abs(we - wi) / std::max({std::abs(we), std::abs(wi), 1e-300}));
+    for (const auto &[name, value] : qoi_values)
+      s.set("quantities_of_interest", name, value);
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      s.write(output_dir + "/summary.json");
+  }
+
+  template class Simulator<2>;
+  template class Simulator<3>;
+} // namespace anvil

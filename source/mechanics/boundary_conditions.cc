@@ -1,0 +1,165 @@
+#include <deal.II/base/function.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <anvil/core/scene.h>
+#include <anvil/geometry/geometry.h>
+#include <anvil/mechanics/boundary_conditions.h>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  namespace
+  {
+    template <int dim>
+    std::string variables()
+    {
+      return dim == 2 ? "x,y,t" : "x,y,z,t";
+    }
+
+    // A vector function whose components are given scalar functions (or 0).
+    template <int dim>
+    class ComponentFunction : public Function<dim>
+    {
+    public:
+      ComponentFunction(const std::vector<std::shared_ptr<FunctionParser<dim>>> &c, double t)
+        : Function<dim>(dim, t)
+        , components(c)
+      {}
+      double value(const Point<dim> &p, const unsigned int component) const override
+      {
+        if (!components[component])
+          return 0.;
+        components[component]->set_time(this->get_time());
+        return components[component]->value(p);
+      }
+
+    private:
+      const std::vector<std::shared_ptr<FunctionParser<dim>>> &components;
+    };
+  } // namespace
+
+  template <int dim>
+  std::shared_ptr<FunctionParser<dim>> parse_expression(const std::string &expression,
+                                                        const Scene       &scene,
+                                                        const std::string &path)
+  {
+    auto f = std::make_shared<FunctionParser<dim>>(1);
+    try
+      {
+        f->initialize(variables<dim>(), expression, {{"pi", numbers::PI}}, true);
+        f->value(Point<dim>()); // muparser reports unknown names on first evaluation
+      }
+    catch (...)
+      {
+        scene.fail(path,
+                   "has an invalid expression '" + expression + "': expected a muparser "
+                   "formula in " + variables<dim>() + " (e.g. 0.5*t or if(t<1, t, 1))");
+      }
+    return f;
+  }
+
+  template <int dim>
+  void BoundaryConditions<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Boundary conditions");
+    prm.declare_entry(
+      "Displacement", "", Patterns::Anything(),
+      "Prescribed displacements in mm: a ';'-separated list of "
+      "'boundary: ux = expr, uy = expr' items (uz in 3D). Expressions in the "
+      "reference coordinates x, y, z (mm) and time t (s). Unnamed components stay free.");
+    prm.declare_entry("Pressure", "", Patterns::Anything(),
+                      "Follower pressures in MPa: a ';'-separated list of 'boundary: expr' "
+                      "items. Positive pressure pushes into the body along the current normal.");
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  void BoundaryConditions<dim>::parse_parameters(ParameterHandler    &prm,
+                                                 const Scene         &scene,
+                                                 const Geometry<dim> &geometry)
+  {
+    prm.enter_subsection("Boundary conditions");
+    const std::string displacement = prm.get("Displacement");
+    const std::string pressure     = prm.get("Pressure");
+    prm.leave_subsection();
+
+    const std::string dpath = "Boundary conditions/Displacement";
+    prescribed.clear();
+    for (const auto &item : split_outside_parentheses(displacement, ';'))
+      {
+        if (item.empty())
+          continue;
+        const auto colon = item.find(':');
+        if (colon == std::string::npos)
+          scene.fail(dpath, "item '" + item + "': expected 'boundary: ux = expr, ...'");
+        PrescribedDisplacement bc;
+        bc.name     = trim(item.substr(0, colon));
+        bc.boundary = geometry.boundary_id(bc.name, scene.where(dpath));
+        bc.mask     = ComponentMask(dim, false);
+        bc.components.resize(dim);
+        for (const auto &assignment : split_outside_parentheses(item.substr(colon + 1), ','))
+          {
+            const auto eq = assignment.find('=');
+            const std::string component = eq == std::string::npos ? "" : trim(assignment.substr(0, eq));
+            int c = -1;
+            for (unsigned int d = 0; d < dim; ++d)
+              if (component == std::string("u") + "xyz"[d])
+                c = d;
+            if (c < 0)
+              scene.fail(dpath, "item '" + item + "': '" + assignment + "' should be " +
+                                  (dim == 2 ? "ux = expr or uy = expr" : "ux, uy or uz = expr"));
+            if (bc.mask[c])
+              scene.fail(dpath, "item '" + item + "' sets " + component + " twice");
+            bc.mask.set(c, true);
+            bc.components[c] = parse_expression<dim>(trim(assignment.substr(eq + 1)), scene, dpath);
+          }
+        prescribed.push_back(bc);
+      }
+
+    const std::string ppath = "Boundary conditions/Pressure";
+    pressure_loads.clear();
+    for (const auto &item : split_outside_parentheses(pressure, ';'))
+      {
+        if (item.empty())
+          continue;
+        const auto colon = item.find(':');
+        if (colon == std::string::npos)
+          scene.fail(ppath, "item '" + item + "': expected 'boundary: expr'");
+        Pressure p;
+        p.name     = trim(item.substr(0, colon));
+        p.boundary = geometry.boundary_id(p.name, scene.where(ppath));
+        p.value    = parse_expression<dim>(trim(item.substr(colon + 1)), scene, ppath);
+        pressure_loads.push_back(p);
+      }
+  }
+
+  template <int dim>
+  void BoundaryConditions<dim>::interpolate(const DoFHandler<dim>                   &dof_handler,
+                                            const double                             t,
+                                            std::map<types::global_dof_index, double> &values) const
+  {
+    for (const auto &bc : prescribed)
+      {
+        ComponentFunction<dim> f(bc.components, t);
+        VectorTools::interpolate_boundary_values(dof_handler, bc.boundary, f, values, bc.mask);
+      }
+  }
+
+  template <int dim>
+  void BoundaryConditions<dim>::make_homogeneous_constraints(const DoFHandler<dim>     &dof_handler,
+                                                             AffineConstraints<double> &constraints) const
+  {
+    for (const auto &bc : prescribed)
+      VectorTools::interpolate_boundary_values(dof_handler, bc.boundary,
+                                               Functions::ZeroFunction<dim>(dim), constraints,
+                                               bc.mask);
+  }
+
+  template class BoundaryConditions<2>;
+  template class BoundaryConditions<3>;
+  template std::shared_ptr<FunctionParser<2>> parse_expression<2>(const std::string &, const Scene &, const std::string &);
+  template std::shared_ptr<FunctionParser<3>> parse_expression<3>(const std::string &, const Scene &, const std::string &);
+} // namespace anvil
