@@ -435,9 +435,14 @@ namespace anvil
         last_increment = du.l2_norm();
         result.increments.push_back(last_increment);
 
-        // Backtracking line search on the residual norm.
-        u_start = owned_solution;
-        double alpha = 1;
+        // Line search on the energy norm s(α) = δu · R(u + α δu) (Crisfield):
+        // the residual norm itself grows in the first iterations of large
+        // rotations although the step is good, so it is a poor merit function.
+        // A full step is kept unless |s(1)| > 0.8 |s(0)| or an element inverts;
+        // then α follows the secant root of s, within [0.1, 1].
+        u_start         = owned_solution;
+        double       alpha = 1;
+        const double s0    = -(du * system_rhs);
         for (unsigned int ls = 0;; ++ls)
           {
             owned_solution = u_start;
@@ -446,11 +451,25 @@ namespace anvil
             if (!parameters.line_search || ls == 5)
               break;
             const bool ok = assemble(false, time_new);
-            if (ok && std::isfinite(residual_norm()) && residual_norm() < r)
+            if (!ok)
+              {
+                alpha *= 0.5;
+                continue;
+              }
+            const double s1 = -(du * system_rhs);
+            if (!std::isfinite(s1))
+              {
+                alpha *= 0.5;
+                continue;
+              }
+            if (std::abs(s1) <= 0.8 * std::abs(s0))
               break;
-            if (ok && residual_norm() < parameters.absolute_residual_tolerance)
+            // Secant root of s between (0, s0) and (α, s1). If s has not changed
+            // sign and grows in magnitude the root lies beyond α: keep α.
+            const double next = alpha * s0 / (s0 - s1);
+            if (!(next > 0) || next >= alpha)
               break;
-            alpha *= 0.5;
+            alpha = std::max(0.1 * alpha, next);
           }
         result.line_search_steps.push_back(alpha);
       }
@@ -522,7 +541,7 @@ namespace anvil
       for (unsigned int j = i; j < 3; ++j)
         f.names.push_back(std::string("stress_") + axes[i] + axes[j]);
     f.names.insert(f.names.end(), {"von_mises", "pressure", "J", "equivalent_plastic_strain", "body"});
-    f.values.assign(f.names.size(), Vector<float>(triangulation.n_active_cells()));
+    f.values.assign(f.names.size(), Vector<double>(triangulation.n_active_cells()));
 
     FEValues<dim> fe_values(mapping, fe, quadrature, update_gradients);
     const unsigned int n_q = quadrature.size();

@@ -83,6 +83,7 @@ namespace anvil
     // gmsh
     std::string  mesh_file;
     unsigned int global_refinements = 0;
+    double       random_distortion  = 0;
 
     // Filled by parse_parameters (generators) or by create (gmsh reads the file
     // once at parse to learn the names, so they are known before any work).

@@ -72,7 +72,7 @@ namespace anvil
     struct CellFields
     {
       std::vector<std::string>                 names;
-      std::vector<dealii::Vector<float>>       values;
+      std::vector<dealii::Vector<double>>      values;
     };
 
     MechanicalProblem(const dealii::parallel::distributed::Triangulation<dim>           &triangulation,

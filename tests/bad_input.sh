@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Every bad input is refused before any work: exit status 2 and one line on
+# stderr naming the file (and line, where it is in the file), the parameter
+# and what was expected.
+set -u
+anvil="$1"; src="$2"
+cd "$(mktemp -d)"
+fail=0
+expect() { # description, regex the message must match, command...
+  local what="$1" regex="$2"; shift 2
+  local err; err=$("$@" 2>&1 >/dev/null); local status=$?
+  local lines; lines=$(printf '%s\n' "$err" | grep -c .)
+  if [ $status -eq 2 ] && [ "$lines" -eq 1 ] && printf '%s' "$err" | grep -Eq "$regex"; then
+    echo "PASS  $what: $err"
+  else
+    echo "FAIL  $what (exit $status, $lines line(s)): $err"; fail=1
+  fi
+  [ -d output ] && { echo "FAIL  $what: output was written before the error"; fail=1; rm -rf output; }
+}
+b="$src/tests/bad"
+expect "misspelled entry"   "misspelled_entry.prm:3: .*End tme"            "$anvil" "$b/misspelled_entry.prm"
+expect "wrong type"         "wrong_type.prm:3: .*one second.*End time.*"    "$anvil" "$b/wrong_type.prm"
+expect "unknown subsection" "unknown_section.prm:2: .*Mechanix"            "$anvil" "$b/unknown_section.prm"
+expect "missing mesh file"  "missing_mesh.prm:4: 'Geometry/Mesh file'.*no_such_mesh.msh" "$anvil" "$b/missing_mesh.prm"
+expect "unknown boundary"   "unknown_boundary.prm:3: .*'lft'.*left"        "$anvil" "$b/unknown_boundary.prm"
+expect "unknown body"       "unknown_body.prm:6: 'Bodies/Names'.*beam"     "$anvil" "$b/unknown_body.prm"
+expect "bad expression"     "bad_expression.prm:3: .*0.5\*tt"              "$anvil" "$b/bad_expression.prm"
+expect "Poisson's ratio 0.5" "bad_poisson.prm:7: .*Poisson's ratio.*0.5"   "$anvil" "$b/bad_poisson.prm"
+expect "inverted block"     "bad_block.prm:3: 'Geometry/Blocks'"           "$anvil" "$b/bad_block.prm"
+expect "missing scene file" "nonexistent.prm: cannot open"                 "$anvil" nonexistent.prm
+expect "bad --set entry"    "--set 'Time/End tme=2'"                       "$anvil" "$src/prm/cantilever.prm" --set "Time/End tme=2"
+expect "bad --set value"    "--set 'Time/End time=soon'"                   "$anvil" "$src/prm/cantilever.prm" --set "Time/End time=soon"
+expect "malformed --set"    "expected 'Section/Subsection/Entry=value'"     "$anvil" "$src/prm/cantilever.prm" --set "Time/End time"
+expect "unknown option"     "unknown option '--frobnicate'"               "$anvil" "$src/prm/cantilever.prm" --frobnicate
+expect "bad probe"          "--set: 'Output/Probes'"                       "$anvil" "$src/prm/cantilever.prm" --set "Output/Probes=tip: 10"
+expect "unknown QoI probe"  "'Output/Quantities of interest'.*no probe named 'tap'" "$anvil" "$src/prm/cantilever.prm" --set "Output/Quantities of interest=a: probe(tap, ux)"
+exit $fail

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# Every shipped scene (prm/*.prm) and test scene parses and checks against its mesh.
+set -u
+anvil="$1"; src="$2"
+fail=0
+for f in "$src"/prm/*.prm "$src"/tests/*.prm "$src"/contrib/steps/*/*.prm; do
+  [ -f "$f" ] || continue
+  if out=$(cd "$(dirname "$f")" && "$anvil" "$f" --check 2>&1); then echo "PASS  $out"; else echo "FAIL  $f: $out"; fail=1; fi
+done
+"$anvil" --print-parameters > /dev/null || { echo "FAIL  --print-parameters"; fail=1; }
+"$anvil" --help | grep -q "Polynomial degree" || { echo "FAIL  --help lacks parameters"; fail=1; }
+exit $fail
