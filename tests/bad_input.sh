@@ -10,7 +10,7 @@ expect() { # description, regex the message must match, command...
   local what="$1" regex="$2"; shift 2
   local err; err=$("$@" 2>&1 >/dev/null); local status=$?
   local lines; lines=$(printf '%s\n' "$err" | grep -c .)
-  if [ $status -eq 2 ] && [ "$lines" -eq 1 ] && printf '%s' "$err" | grep -Eq "$regex"; then
+  if [ $status -eq 2 ] && [ "$lines" -eq 1 ] && printf '%s' "$err" | grep -Eq -- "$regex"; then
     echo "PASS  $what: $err"
   else
     echo "FAIL  $what (exit $status, $lines line(s)): $err"; fail=1

@@ -30,6 +30,16 @@ namespace anvil
       Simulator<dim>::declare_parameters(prm, bodies);
     }
 
+    // Returns why the run stopped early, or "" (the Simulator is gone by then).
+    template <int dim>
+    std::string run_scene(Scene &scene, const bool check_only)
+    {
+      Simulator<dim> simulator(scene, MPI_COMM_WORLD);
+      if (check_only || simulator.run())
+        return "";
+      return simulator.failure();
+    }
+
     void read_scene(Scene &scene)
     {
       scene.read_shape();
@@ -97,28 +107,12 @@ namespace anvil
 
         Scene scene(filename, overrides);
         read_scene(scene);
-        if (scene.dimension() == 2)
-          {
-            Simulator<2> simulator(scene, MPI_COMM_WORLD);
-            if (check)
-              {
-                if (root)
-                  std::cout << "anvil: " << filename << " is valid" << std::endl;
-                return 0;
-              }
-            simulator.run();
-          }
-        else
-          {
-            Simulator<3> simulator(scene, MPI_COMM_WORLD);
-            if (check)
-              {
-                if (root)
-                  std::cout << "anvil: " << filename << " is valid" << std::endl;
-                return 0;
-              }
-            simulator.run();
-          }
+        const std::string failure = scene.dimension() == 2 ? run_scene<2>(scene, check) :
+                                                             run_scene<3>(scene, check);
+        if (!failure.empty())
+          throw SimulationError(failure);
+        if (check && root)
+          std::cout << "anvil: " << filename << " is valid" << std::endl;
       }
     catch (const InputError &e)
       {

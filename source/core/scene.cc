@@ -141,7 +141,7 @@ namespace anvil
       {
         std::string msg = exception_text(e);
         // deal.II says "Line <12> of file <scene.prm>: ..." — reformat as file:line.
-        const std::regex  line_re("Line <([0-9]+)> of file <([^>]*)>:?\\s*(.*)");
+        const std::regex  line_re("Line <([0-9]+)> of file <([^>:]*)>?:?\\s*(.*)");
         std::smatch       m;
         if (std::regex_search(msg, m, line_re))
           msg = m[2].str() + ":" + m[1].str() + ": " + m[3].str();

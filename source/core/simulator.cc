@@ -70,7 +70,6 @@ namespace anvil
     : scene(scene)
     , mpi_communicator(communicator)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
-    , timer(communicator, pcout, TimerOutput::never, TimerOutput::wall_times)
     , triangulation(communicator)
   {
     auto &prm = scene.parameters();
@@ -119,15 +118,17 @@ namespace anvil
   Simulator<dim>::~Simulator() = default;
 
   template <int dim>
-  void Simulator<dim>::run()
+  bool Simulator<dim>::run()
   {
     wall_start = MPI_Wtime();
+    timer = std::make_unique<TimerOutput>(mpi_communicator, pcout, TimerOutput::never,
+                                          TimerOutput::wall_times);
     {
-      TimerOutput::Scope t(timer, "Mesh");
+      TimerOutput::Scope t(*timer, "Mesh");
       geometry.create(triangulation);
     }
     mechanical = std::make_unique<MechanicalProblem<dim>>(triangulation, mechanics_parameters,
-                                                          boundary_conditions, materials, timer);
+                                                          boundary_conditions, materials, *timer);
     mechanical->setup();
 
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
@@ -173,8 +174,8 @@ namespace anvil
                          Utilities::to_string(time.minimum_time_step) + " s reached";
                 write_fields(t, n_steps);
                 write_summary(status);
-                throw SimulationError(status + " (last converged state written to " +
-                                      output_dir + ")");
+                failure_reason = status + " (last converged state written to " + output_dir + ")";
+                return false;
               }
             continue;
           }
@@ -211,10 +212,11 @@ namespace anvil
     write_summary(status);
     if (!quiet)
       {
-        timer.print_summary();
+        timer->print_summary();
         for (const auto &[name, value] : qoi_values)
           pcout << "  " << name << " = " << std::setprecision(10) << value << std::endl;
       }
+    return true;
   }
 
   template class Simulator<2>;

@@ -179,7 +179,7 @@ namespace anvil
   template <int dim>
   void Simulator<dim>::write_histories(const double t, const unsigned int step)
   {
-    TimerOutput::Scope  s(timer, "Output");
+    TimerOutput::Scope  s(*timer, "Output");
     std::vector<double> row = {double(step), t};
     for (const auto &[name, id] : reaction_boundaries)
       {
@@ -211,7 +211,7 @@ namespace anvil
   template <int dim>
   void Simulator<dim>::write_fields(const double t, const unsigned int step)
   {
-    TimerOutput::Scope s(timer, "Output");
+    TimerOutput::Scope s(*timer, "Output");
     DataOut<dim>       data_out;
     data_out.attach_dof_handler(mechanical->get_dof_handler());
     std::vector<DataComponentInterpretation::DataComponentInterpretation> interpretation(
@@ -318,7 +318,7 @@ namespace anvil
     s.set("newton_iterations", n_newton);
     s.set("linear_iterations", n_linear);
     s.set("wall_time", MPI_Wtime() - wall_start);
-    for (const auto &[section, seconds] : timer.get_summary_data(TimerOutput::total_wall_time))
+    for (const auto &[section, seconds] : timer->get_summary_data(TimerOutput::total_wall_time))
       s.set("wall_time_per_phase", section, Utilities::MPI::max(seconds, mpi_communicator));
     const double assembly = Utilities::MPI::min(mechanical->last_assembly_rate(), mpi_communicator);
     s.set("assembly_cells_per_second_per_process", assembly);

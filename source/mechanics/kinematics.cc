@@ -11,11 +11,18 @@ namespace anvil
     F_inv = invert(F);
     F_half_inv = invert(0.5 * (F + F_old));
     dL         = (F - F_old) * F_half_inv;
-    strain_increment = symmetrize(dL);
     const Tensor<2, 3> half_spin = 0.25 * (dL - transpose(dL));
     const Tensor<2, 3> I         = unit_symmetric_tensor<3>();
     A_inv                        = invert(I - half_spin);
     rotation_increment           = A_inv * (I + half_spin);
+    // The strain increment lives on the mid-point configuration: rotate it
+    // forward by half the step (Cayley transform of ¼Δω) so that the update
+    // is second-order accurate for the Jaumann rate, not only first.
+    mid_strain                   = symmetrize(dL);
+    A_half_inv                   = invert(I - 0.5 * half_spin);
+    half_rotation                = A_half_inv * (I + 0.5 * half_spin);
+    strain_increment =
+      symmetrize(half_rotation * Tensor<2, 3>(mid_strain) * transpose(half_rotation));
   }
 
   Tensor<2, 3> first_piola_stress(const IncrementalKinematics &kin,
@@ -45,11 +52,16 @@ namespace anvil
           Tensor<2, 3> dF;
           dF[k][L] = 1.;
           const Tensor<2, 3>          ddL  = I_minus * dF * kin.F_half_inv;
-          const SymmetricTensor<2, 3> deps = symmetrize(ddL);
-          SymmetricTensor<2, 3>       dsigma_sym = response.tangent * deps;
-
-          // Rotation part: only if the previous stress is not zero.
           const Tensor<2, 3> dspin = 0.5 * (ddL - transpose(ddL));
+          // δ(R_h Δε R_hᵀ), R_h = (I − ¼Δω)⁻¹(I + ¼Δω): δR_h = ¼ A_h⁻¹ δΔω (I + R_h).
+          const Tensor<2, 3> dRh = 0.25 * kin.A_half_inv * dspin * (I + kin.half_rotation);
+          const Tensor<2, 3> Y   = dRh * Tensor<2, 3>(kin.mid_strain) * transpose(kin.half_rotation);
+          const SymmetricTensor<2, 3> deps =
+            symmetrize(kin.half_rotation * Tensor<2, 3>(symmetrize(ddL)) *
+                         transpose(kin.half_rotation) + Y + transpose(Y));
+          SymmetricTensor<2, 3> dsigma_sym = response.tangent * deps;
+
+          // Rotation of the previous stress.
           const Tensor<2, 3> dR    = 0.5 * kin.A_inv * dspin * one_plus_R;
           const Tensor<2, 3> X     = dR * sn_RT;
           const SymmetricTensor<2, 3> drot = symmetrize(X + transpose(X));

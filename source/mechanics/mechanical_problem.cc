@@ -589,7 +589,9 @@ namespace anvil
         const auto cell_and_point =
           GridTools::find_active_cell_around_point(mapping, dof_handler, point);
         const auto &cell = cell_and_point.first;
-        if (cell->is_locally_owned())
+        // On a process that does not hold the point the search returns an
+        // invalid iterator (or an artificial cell).
+        if (cell.state() == IteratorState::valid && cell->is_locally_owned())
           {
             found = 1;
             const Quadrature<dim> q(GeometryInfo<dim>::project_to_unit_cell(cell_and_point.second));

@@ -34,9 +34,10 @@ namespace anvil
     Simulator(Scene &scene, MPI_Comm communicator);
     ~Simulator();
 
-    /// Run the time loop. Throws SimulationError if a step cannot be recovered
-    /// (after writing the last converged state and summary.json).
-    void run();
+    /// Run the time loop. Returns false if a step could not be recovered, after
+    /// writing the last converged state and summary.json; failure() says why.
+    bool run();
+    const std::string &failure() const { return failure_reason; }
 
     /// The output directory of this run.
     const std::string &output_directory() const { return output_dir; }
@@ -78,7 +79,7 @@ namespace anvil
     Scene                                       &scene;
     MPI_Comm                                     mpi_communicator;
     dealii::ConditionalOStream                   pcout;
-    dealii::TimerOutput                          timer;
+    std::unique_ptr<dealii::TimerOutput>         timer; // made by run(), not at parse
     dealii::parallel::distributed::Triangulation<dim> triangulation;
     Geometry<dim>                                geometry;
     BoundaryConditions<dim>                      boundary_conditions;
@@ -100,6 +101,7 @@ namespace anvil
     unsigned int n_steps = 0, n_cut_backs = 0, n_newton = 0, n_linear = 0;
     double       current_time = 0;
     double       wall_start   = 0;
+    std::string  failure_reason;
   };
 
   /// The program: parse the command line, read the scene, dispatch on dimension.
