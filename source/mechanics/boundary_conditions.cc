@@ -7,6 +7,9 @@
 #include <anvil/geometry/geometry.h>
 #include <anvil/mechanics/boundary_conditions.h>
 
+#include <iostream>
+#include <sstream>
+
 namespace anvil
 {
   using namespace dealii;
@@ -47,6 +50,11 @@ namespace anvil
                                                         const std::string &path)
   {
     auto f = std::make_shared<FunctionParser<dim>>(1);
+    // deal.II prints muparser's diagnosis to std::cerr before it throws:
+    // capture it for our one-line message.
+    std::ostringstream diagnosis;
+    std::streambuf    *cerr_buffer = std::cerr.rdbuf(diagnosis.rdbuf());
+    bool               ok          = true;
     try
       {
         f->initialize(variables<dim>(), expression, {{"pi", numbers::PI}}, true);
@@ -54,9 +62,20 @@ namespace anvil
       }
     catch (...)
       {
-        scene.fail(path,
-                   "has an invalid expression '" + expression + "': expected a muparser "
-                   "formula in " + variables<dim>() + " (e.g. 0.5*t or if(t<1, t, 1))");
+        ok = false;
+      }
+    std::cerr.rdbuf(cerr_buffer);
+    if (!ok)
+      {
+        std::string reason;
+        const std::string text = diagnosis.str();
+        const auto        m    = text.find("Message:");
+        if (m != std::string::npos)
+          reason = trim(text.substr(m + 8, text.find('\n', m) - m - 8));
+        scene.fail(path, "has an invalid expression '" + expression + "'" +
+                           (reason.empty() ? "" : " (" + reason + ")") +
+                           ": expected a muparser formula in " + variables<dim>() +
+                           " (e.g. 0.5*t or if(t<1, t, 1))");
       }
     return f;
   }
