@@ -298,10 +298,10 @@ namespace anvil
         for (unsigned int i = 0; i < n_dofs; ++i)
           cell_rhs(i) = cell_external(i) - cell_internal(i);
         if (with_matrix)
-          constraints.distribute_local_to_global(cell_matrix, cell_rhs, dof_indices,
-                                                 system_matrix, system_rhs);
+          active_constraints->distribute_local_to_global(cell_matrix, cell_rhs, dof_indices,
+                                                         system_matrix, system_rhs);
         else
-          constraints.distribute_local_to_global(cell_rhs, dof_indices, system_rhs);
+          active_constraints->distribute_local_to_global(cell_rhs, dof_indices, system_rhs);
         internal_force.add(dof_indices, cell_internal);
         external_force.add(dof_indices, cell_external);
       }
@@ -367,17 +367,32 @@ namespace anvil
     (void)time_old;
     StepResult result;
 
-    // Predictor: the committed configuration with the boundary values at t_n+1.
+    // Predictor: the first Newton iteration starts from the committed
+    // configuration and imposes the jump of the prescribed displacements as
+    // inhomogeneous constraints, so the whole body follows the boundary
+    // (moving only the boundary nodes would invert the cells next to it when
+    // the jump exceeds their size).
     owned_solution = owned_old_solution;
+    solution       = owned_solution;
+    predictor_constraints.clear();
+    predictor_constraints.reinit(locally_relevant_dofs);
+    DoFTools::make_hanging_node_constraints(dof_handler, predictor_constraints);
     {
       std::map<types::global_dof_index, double> values;
       boundary_conditions.interpolate(dof_handler, time_new, values);
       for (const auto &[dof, value] : values)
-        if (locally_owned_dofs.is_element(dof))
-          owned_solution(dof) = value;
-      owned_solution.compress(VectorOperation::insert);
+        if (locally_relevant_dofs.is_element(dof) && !predictor_constraints.is_constrained(dof))
+          {
+            predictor_constraints.add_line(dof);
+            predictor_constraints.set_inhomogeneity(dof, value - old_solution(dof));
+          }
     }
-    solution = owned_solution;
+    predictor_constraints.close();
+    active_constraints = &predictor_constraints;
+    double largest_jump = 0;
+    for (const auto &line : predictor_constraints.get_lines())
+      largest_jump = std::max(largest_jump, std::abs(line.inhomogeneity));
+    const bool has_jump = Utilities::MPI::max(largest_jump, mpi_communicator) > 0;
 
     TrilinosWrappers::MPI::Vector du(locally_owned_dofs, mpi_communicator);
     TrilinosWrappers::MPI::Vector u_start(locally_owned_dofs, mpi_communicator);
@@ -407,7 +422,7 @@ namespace anvil
         const bool increment_ok =
           (last_increment >= 0 && last_increment <= parameters.displacement_tolerance * du_scale) ||
           r <= parameters.absolute_residual_tolerance;
-        if (residual_ok && (increment_ok || it == 0))
+        if (residual_ok && (increment_ok || it == 0) && !(it == 0 && has_jump))
           {
             result.converged  = true;
             result.iterations = it;
@@ -431,8 +446,9 @@ namespace anvil
             result.failure = "the linear solver failed";
             return result;
           }
-        constraints.distribute(du);
-        last_increment = du.l2_norm();
+        active_constraints->distribute(du);
+        active_constraints = &constraints;
+        last_increment     = du.l2_norm();
         result.increments.push_back(last_increment);
 
         // Line search on the energy norm s(α) = δu · R(u + α δu) (Crisfield):
@@ -448,7 +464,8 @@ namespace anvil
             owned_solution = u_start;
             owned_solution.add(alpha, du);
             solution = owned_solution;
-            if (!parameters.line_search || ls == 5)
+            // The first update carries the boundary jump: take it whole.
+            if (!parameters.line_search || ls == 5 || (it == 0 && has_jump))
               break;
             const bool ok = assemble(false, time_new);
             if (!ok)

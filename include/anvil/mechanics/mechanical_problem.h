@@ -136,7 +136,9 @@ namespace anvil
     dealii::QGauss<dim>       quadrature;
     dealii::QGauss<dim - 1>   face_quadrature;
     dealii::IndexSet          locally_owned_dofs, locally_relevant_dofs;
-    dealii::AffineConstraints<double> constraints; // homogeneous: Newton updates
+    dealii::AffineConstraints<double> constraints;           // homogeneous: Newton updates
+    dealii::AffineConstraints<double> predictor_constraints; // first iteration: the BC jump
+    const dealii::AffineConstraints<double> *active_constraints = &constraints;
 
     dealii::TrilinosWrappers::SparseMatrix system_matrix;
     dealii::TrilinosWrappers::MPI::Vector  system_rhs;          // −R, constrained entries 0
