@@ -1,10 +1,15 @@
-// The consistent tangent A = dP/dF of the incremental (Hughes-Winget) update,
-// as assembled by the mechanics, against central finite differences of P(F).
-// Prestressed state, large increment with rotation; elastic material.
-// Prints both and the relative error; fails above 1e-6.
+// Consistent tangents against central finite differences, for every material
+// model, in the elastic and the plastic branch:
+//  1. A = dP/dF of the incremental (Hughes-Winget) update as the mechanics
+//     assembles it (kinematics + material tangent + rotated-stress sensitivity),
+//     2D and 3D, with prestress and incremental rotations up to 0.7 rad;
+//  2. dsigma/dT of the material update at fixed strain increment.
+// Prints analytic and finite-difference values and fails above 1e-6 relative.
+#include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/symmetric_tensor.h>
 
-#include <anvil/material/hypoelastic.h>
+#include <anvil/core/scene.h>
+#include <anvil/material/material_point.h>
 #include <anvil/mechanics/kinematics.h>
 
 #include <cmath>
@@ -13,63 +18,70 @@
 using namespace dealii;
 using namespace anvil;
 
-template <int dim>
-double check(const double angle)
+std::shared_ptr<const MaterialModel> make_model(const std::string &settings)
 {
-  HypoelasticModel::Parameters p;
-  p.bulk_modulus  = 70000;
-  p.shear_modulus = 26923;
-  HypoelasticModel model(p);
+  ParameterHandler prm;
+  MaterialFactory::declare_parameters(prm);
+  prm.parse_input_from_string("subsection Material\n" + settings + "end\n");
+  return MaterialFactory::create(prm, Scene(), "");
+}
 
+struct Case
+{
+  std::string name, settings;
+  double      yield_scale; // prestress magnitude relative to which the increment is plastic
+};
+
+template <int dim>
+double check_piola(const MaterialModel &model, const double angle, const double stretch,
+                   const double T, const double dT, bool print)
+{
+  // Prestress: well inside the yield surface for the elastic-branch case.
   SymmetricTensor<2, 3> sigma_n;
-  sigma_n[0][0] = 150;
-  sigma_n[1][1] = -40;
-  sigma_n[0][1] = 35;
-  sigma_n[2][2] = 20;
+  sigma_n[0][0] = 150, sigma_n[1][1] = -40, sigma_n[0][1] = 35, sigma_n[2][2] = 20;
   if (dim == 3)
-    {
-      sigma_n[0][2] = -12;
-      sigma_n[1][2] = 8;
-    }
+    sigma_n[0][2] = -12, sigma_n[1][2] = 8;
+  if (stretch < 1e-3)
+    sigma_n *= 0.1;
 
   Tensor<2, 3> F_old = unit_symmetric_tensor<3>();
   F_old[0][0] = 1.1, F_old[0][1] = 0.2, F_old[1][0] = -0.05, F_old[1][1] = 0.95;
   if (dim == 3)
     F_old[2][2] = 1.02, F_old[0][2] = 0.03, F_old[2][1] = -0.04;
-  // Increment: a rotation by `angle` and a stretch.
   Tensor<2, 3> R = unit_symmetric_tensor<3>();
   R[0][0] = R[1][1] = std::cos(angle);
-  R[0][1]           = -std::sin(angle);
-  R[1][0]           = std::sin(angle);
+  R[0][1] = -std::sin(angle), R[1][0] = std::sin(angle);
   Tensor<2, 3> S = unit_symmetric_tensor<3>();
-  S[0][0] = 1.03, S[1][1] = 0.98, S[0][1] = S[1][0] = 0.02;
+  S[0][0] = 1 + 3 * stretch, S[1][1] = 1 - stretch, S[0][1] = S[1][0] = 2 * stretch;
   if (dim == 3)
-    S[2][2] = 1.01, S[1][2] = S[2][1] = 0.015;
+    S[2][2] = 1 + stretch, S[1][2] = S[2][1] = 1.5 * stretch;
   const Tensor<2, 3> F = R * S * F_old;
 
   auto piola = [&](const Tensor<2, 3> &Fx, MaterialResponse &response) {
-    auto                  point = model.create_point();
+    auto point = model.create_point();
     point->set_stress(sigma_n);
     IncrementalKinematics kin;
     kin.reinit(Fx, F_old);
     MaterialIncrement inc;
-    inc.strain_increment   = kin.strain_increment;
-    inc.rotation_increment = kin.rotation_increment;
+    inc.strain_increment      = kin.strain_increment;
+    inc.rotation_increment    = kin.rotation_increment;
+    inc.temperature           = T;
+    inc.temperature_increment = dT;
+    inc.time_step             = 0.01;
     point->update(inc, request_stress | request_tangent, response);
     return std::make_pair(first_piola_stress(kin, response.stress), kin);
   };
 
-  MaterialResponse response;
-  const auto [P, kin]        = piola(F, response);
-  const Tensor<4, dim> A     = first_piola_tangent<dim>(kin, sigma_n, response);
-  const double         h     = 1e-6;
+  MaterialResponse     response;
+  const auto [P, kin]  = piola(F, response);
+  const Tensor<4, dim> A = first_piola_tangent<dim>(kin, sigma_n, response);
+  const double         h = 1e-6;
   double               max_a = 0, max_err = 0;
   for (unsigned int k = 0; k < dim; ++k)
     for (unsigned int L = 0; L < dim; ++L)
       {
         Tensor<2, 3> Fp = F, Fm = F;
-        Fp[k][L] += h;
-        Fm[k][L] -= h;
+        Fp[k][L] += h, Fm[k][L] -= h;
         MaterialResponse r;
         const Tensor<2, 3> dP = (piola(Fp, r).first - piola(Fm, r).first) / (2 * h);
         for (unsigned int i = 0; i < dim; ++i)
@@ -77,21 +89,95 @@ double check(const double angle)
             {
               max_a   = std::max(max_a, std::abs(A[i][J][k][L]));
               max_err = std::max(max_err, std::abs(A[i][J][k][L] - dP[i][J]));
-              if (k == 0 && L == 1)
-                std::cout << "  dim " << dim << " dP" << i << J << "/dF01: analytic "
-                          << A[i][J][k][L] << "  finite difference " << dP[i][J] << '\n';
+              if (print && k == 0 && L == 1 && i == 0)
+                std::cout << "    dP0" << J << "/dF01: analytic " << A[i][J][k][L]
+                          << "  finite difference " << dP[i][J] << '\n';
             }
       }
-  std::cout << "dim " << dim << ", rotation " << angle << " rad: max |A - A_fd| / max |A| = "
-            << max_err / max_a << std::endl;
+  std::cout << "  dim " << dim << ", rotation " << angle << " rad, "
+            << (response.equivalent_plastic_strain > 0 ? "plastic" : "elastic")
+            << ": max |A - A_fd| / max |A| = " << max_err / max_a << std::endl;
   return max_err / max_a;
+}
+
+double check_temperature(const MaterialModel &model, const double stretch, const double T)
+{
+  SymmetricTensor<2, 3> de;
+  de[0][0] = 3 * stretch, de[1][1] = -stretch, de[0][1] = 2 * stretch;
+  auto stress = [&](const double Tx, MaterialResponse &r) {
+    auto point = model.create_point();
+    point->set_stress(SymmetricTensor<2, 3>());
+    MaterialIncrement inc;
+    inc.strain_increment      = de;
+    inc.temperature           = Tx;
+    inc.temperature_increment = Tx - 293;
+    inc.time_step             = 0.01;
+    point->update(inc, request_stress | request_temperature_derivative, r);
+    return r.stress;
+  };
+  MaterialResponse r, rr;
+  stress(T, r);
+  const double                h  = 1e-4;
+  const SymmetricTensor<2, 3> fd = (stress(T + h, rr) - stress(T - h, rr)) / (2 * h);
+  const double err = (fd - r.stress_temperature_derivative).norm() /
+                     std::max(fd.norm(), 1e-300);
+  std::cout << "  dsigma/dT, " << (r.equivalent_plastic_strain > 0 ? "plastic" : "elastic")
+            << ": analytic dsxx/dT " << r.stress_temperature_derivative[0][0]
+            << "  finite difference " << fd[0][0] << "  relative error " << err << std::endl;
+  return err;
 }
 
 int main()
 {
+  const std::string elastic =
+    "subsection Elasticity\n set Young's modulus = 200000\n set Poisson's ratio = 0.3\n"
+    " set Thermal expansion = 1.2e-5\n set Reference temperature = 293\n"
+    " subsection Modulus temperature factor\n set Model = linear\n set Softening = 4e-4\n end\n"
+    "end\n";
+  const std::vector<Case> cases = {
+    {"hypoelastic", "set Model = hypoelastic\n" + elastic, 0},
+    {"J2 linear hardening",
+     "set Model = J2\n" + elastic +
+       "subsection Hardening\n set Model = linear\n set Initial yield stress = 150\n"
+       " set Hardening modulus = 1000\nend\n",
+     1},
+    {"J2 saturation hardening, linear thermal softening",
+     "set Model = J2\n" + elastic +
+       "subsection Hardening\n set Model = saturation\n set Initial yield stress = 150\n"
+       " set Hardening modulus = 129\n set Saturation stress = 300\n set Saturation exponent = 16.9\n"
+       " subsection Thermal softening\n set Model = linear\n set Softening coefficient = 0.002\n"
+       " set Reference temperature = 293\n end\nend\n",
+     1},
+    {"J2 swift hardening, Johnson-Cook softening",
+     "set Model = J2\n" + elastic +
+       "subsection Hardening\n set Model = swift\n set Strength coefficient = 500\n"
+       " set Reference strain = 0.01\n set Hardening exponent = 0.2\n"
+       " subsection Thermal softening\n set Model = johnson-cook\n set Melting temperature = 1700\n"
+       " set Exponent = 1.1\n set Reference temperature = 293\n end\nend\n",
+     1},
+    {"Perzyna, T-dependent eta, n, m",
+     "set Model = Perzyna\n" + elastic +
+       "subsection Hardening\n set Model = voce\n set Initial yield stress = 150\n"
+       " set Saturation stress = 250\n set Saturation exponent = 10\nend\n"
+       "subsection Viscosity\n subsection Eta\n set Model = linear\n set Value = 50\n"
+       " set Softening = 1e-3\n end\n subsection n\n set Model = linear\n set Value = 1.5\n"
+       " set Softening = 2e-4\n end\n subsection m\n set Model = linear\n set Value = 3\n"
+       " set Softening = -5e-4\n end\n set Strain exponent = 0.3\n set Strain reference = 0.1\nend\n",
+     1},
+  };
   double worst = 0;
-  for (const double angle : {0.0, 0.1, 0.7})
-    worst = std::max({worst, check<2>(angle), check<3>(angle)});
+  for (const auto &c : cases)
+    {
+      std::cout << c.name << std::endl;
+      const auto model = make_model(c.settings);
+      for (const double stretch : {1e-4, 2e-2}) // elastic, then plastic branch
+        {
+          for (const double angle : {0.0, 0.1, 0.7})
+            worst = std::max({worst, check_piola<2>(*model, angle, stretch, 350, 5, angle == 0.1),
+                              check_piola<3>(*model, angle, stretch, 350, 5, false)});
+          worst = std::max(worst, check_temperature(*model, stretch, 400));
+        }
+    }
   const bool ok = worst < 1e-6;
   std::cout << (ok ? "PASS" : "FAIL") << " worst relative error " << worst << " (tolerance 1e-6)"
             << std::endl;

@@ -226,6 +226,10 @@ namespace anvil
     rank = Utilities::MPI::this_mpi_process(mpi_communicator);
     data_out.add_data_vector(rank, "rank", DataOut<dim>::type_cell_data);
     data_out.build_patches(mechanical->get_mapping());
+    // best_compression costs several seconds per write at 10⁵ cells.
+    DataOutBase::VtkFlags flags;
+    flags.compression_level = DataOutBase::VtkFlags::best_speed;
+    data_out.set_flags(flags);
     const std::string name = data_out.write_vtu_with_pvtu_record(output_dir + "/fields/",
                                                                  "solution", step,
                                                                  mpi_communicator, 5);

@@ -1,5 +1,5 @@
 #include <anvil/core/scene.h>
-#include <anvil/material/hypoelastic.h>
+#include <anvil/material/j2_plasticity.h>
 #include <anvil/material/material_point.h>
 
 namespace anvil
@@ -8,17 +8,17 @@ namespace anvil
 
   namespace MaterialFactory
   {
-    // Registered models. Each has a subsection of the same (capitalised) name.
-    // Plastic laws (J2, Perzyna) register here as they are added.
     void declare_parameters(ParameterHandler &prm)
     {
       prm.enter_subsection("Material");
-      prm.declare_entry("Model", "hypoelastic", Patterns::Selection("hypoelastic"),
-                        "The constitutive law of this body: hypoelastic (isotropic, "
-                        "Jaumann rate via Hughes-Winget increments).");
-      prm.enter_subsection("Hypoelastic");
-      HypoelasticModel::declare_parameters(prm);
-      prm.leave_subsection();
+      prm.declare_entry(
+        "Model", "hypoelastic", Patterns::Selection("hypoelastic|J2|Perzyna"),
+        "The constitutive law of this body (seed sec. 1.3): hypoelastic (thermo-elastic, "
+        "Jaumann rate, subsection Elasticity); J2 (rate-independent von Mises plasticity with "
+        "isotropic hardening, radial return: Elasticity, Hardening); Perzyna (J2 "
+        "viscoplasticity returning to the generalized criterion of eq. 18: Elasticity, "
+        "Hardening, Viscosity).");
+      J2Model::declare_parameters(prm);
       prm.leave_subsection();
     }
 
@@ -27,20 +27,15 @@ namespace anvil
                                                 const std::string &path_prefix)
     {
       prm.enter_subsection("Material");
-      const std::string                    model = prm.get("Model");
-      std::shared_ptr<const MaterialModel> result;
-      if (model == "hypoelastic")
-        {
-          prm.enter_subsection("Hypoelastic");
-          const auto p =
-            HypoelasticModel::parse_parameters(prm, scene, path_prefix + "/Material/Hypoelastic");
-          prm.leave_subsection();
-          result = std::make_shared<HypoelasticModel>(p);
-        }
+      const std::string model = prm.get("Model");
+      auto              m     = std::make_shared<J2Model>();
+      m->plastic              = model != "hypoelastic";
+      const std::string path = path_prefix.empty() ? "Material" : path_prefix + "/Material";
+      m->parse_parameters(prm, scene, path);
+      if (model == "Perzyna")
+        m->viscosity.parse_parameters(prm, scene, path, m->elastic.reference_temperature);
       prm.leave_subsection();
-      if (!result)
-        scene.fail(path_prefix + "/Material/Model", "names no known model");
-      return result;
+      return m;
     }
   } // namespace MaterialFactory
 } // namespace anvil

@@ -44,39 +44,45 @@ namespace anvil
     const Tensor<2, 3> one_plus_R = I + kin.rotation_increment;
     const Tensor<2, 3> sn_RT      = Tensor<2, 3>(stress_old) * transpose(kin.rotation_increment);
 
+    const Tensor<2, 3> I_plus_Rh = I + kin.half_rotation;
+    const Tensor<2, 3> Rh_T      = transpose(kin.half_rotation);
+    const Tensor<2, 3> mid_Rh_T  = Tensor<2, 3>(kin.mid_strain) * Rh_T;
+
     Tensor<4, dim> A;
-    // One directional derivative per unit direction δF = e_k ⊗ e_L.
+    // One directional derivative per unit direction δF = e_k ⊗ e_L; products
+    // with δF are outer products of one column and one row.
     for (unsigned int k = 0; k < dim; ++k)
       for (unsigned int L = 0; L < dim; ++L)
         {
-          Tensor<2, 3> dF;
-          dF[k][L] = 1.;
-          const Tensor<2, 3>          ddL  = I_minus * dF * kin.F_half_inv;
+          Tensor<2, 3> ddL; // (I − ½ΔL) e_k ⊗ e_L F½⁻¹
+          for (unsigned int i = 0; i < 3; ++i)
+            for (unsigned int j = 0; j < 3; ++j)
+              ddL[i][j] = I_minus[i][k] * kin.F_half_inv[L][j];
           const Tensor<2, 3> dspin = 0.5 * (ddL - transpose(ddL));
           // δ(R_h Δε R_hᵀ), R_h = (I − ¼Δω)⁻¹(I + ¼Δω): δR_h = ¼ A_h⁻¹ δΔω (I + R_h).
-          const Tensor<2, 3> dRh = 0.25 * kin.A_half_inv * dspin * (I + kin.half_rotation);
-          const Tensor<2, 3> Y   = dRh * Tensor<2, 3>(kin.mid_strain) * transpose(kin.half_rotation);
+          const Tensor<2, 3> dRh = 0.25 * kin.A_half_inv * dspin * I_plus_Rh;
+          const Tensor<2, 3> Y   = dRh * mid_Rh_T;
           const SymmetricTensor<2, 3> deps =
-            symmetrize(kin.half_rotation * Tensor<2, 3>(symmetrize(ddL)) *
-                         transpose(kin.half_rotation) + Y + transpose(Y));
+            symmetrize(kin.half_rotation * Tensor<2, 3>(symmetrize(ddL)) * Rh_T + Y +
+                       transpose(Y));
           SymmetricTensor<2, 3> dsigma_sym = response.tangent * deps;
 
           // Rotation of the previous stress.
-          const Tensor<2, 3> dR    = 0.5 * kin.A_inv * dspin * one_plus_R;
-          const Tensor<2, 3> X     = dR * sn_RT;
+          const Tensor<2, 3> dR = 0.5 * kin.A_inv * dspin * one_plus_R;
+          const Tensor<2, 3> X  = dR * sn_RT;
           const SymmetricTensor<2, 3> drot = symmetrize(X + transpose(X));
           if (response.sensitivity_is_identity)
             dsigma_sym += drot;
           else
             dsigma_sym += response.rotated_stress_sensitivity * drot;
 
-          const double       trace_dF_Finv = trace(dF * kin.F_inv);
-          const Tensor<2, 3> dP =
-            kin.J * (trace_dF_Finv * sigma_FiT + Tensor<2, 3>(dsigma_sym) * F_inv_T -
-                     sigma_FiT * transpose(dF) * F_inv_T);
+          // tr(δF F⁻¹) = (F⁻¹)_Lk;  σF⁻ᵀ δFᵀ F⁻ᵀ = (σF⁻ᵀ e_L) ⊗ (F⁻ᵀ)_k·
+          const double       trace_dF_Finv = kin.F_inv[L][k];
+          const Tensor<2, 3> dsigma_FiT    = Tensor<2, 3>(dsigma_sym) * F_inv_T;
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int J = 0; J < dim; ++J)
-              A[i][J][k][L] = dP[i][J];
+              A[i][J][k][L] = kin.J * (trace_dF_Finv * sigma_FiT[i][J] + dsigma_FiT[i][J] -
+                                       sigma_FiT[i][L] * F_inv_T[k][J]);
         }
     return A;
   }

@@ -5,6 +5,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -39,9 +40,18 @@ namespace anvil
     dealii::SymmetricTensor<2, 3> strain_increment;
     /// Incremental rotation ΔR (Hughes–Winget: (I - ½Δω)⁻¹(I + ½Δω)); rotates σ_n.
     dealii::Tensor<2, 3> rotation_increment = dealii::unit_symmetric_tensor<3>();
-    double               temperature           = 293.;
-    double               temperature_increment = 0.;
-    double               time_step             = 1.;
+    /// Temperature at t_n+1 and its change over the step, K.
+    double temperature           = 293.;
+    double temperature_increment = 0.;
+    double time_step             = 1.; // s
+    /**
+     * Adiabatic update (Armero–Simo split): the point heats by its own
+     * dissipation and thermoelastic effect during the increment,
+     * ρc ΔT = Δt (χ Ẇirr + Ẇthel), solved together with the return map;
+     * `temperature`/`temperature_increment` are then the values at the start of
+     * the isothermal phase (ΔT from conduction only).
+     */
+    bool adiabatic = false;
   };
 
   /**
@@ -57,12 +67,19 @@ namespace anvil
     bool                          sensitivity_is_identity = true;
     dealii::SymmetricTensor<4, 3> rotated_stress_sensitivity;
     dealii::SymmetricTensor<2, 3> stress_temperature_derivative;
-    /// χ·σ̄·ε̄̇ᵛᵖ (eq. 21) in MPa/s = mW/mm³.
+    /// Ẇirr = σ̄ ε̄̇ᵛᵖ (eq. 21), MPa/s = mW/mm³: the plastic work rate.
+    double plastic_work_rate = 0.;
+    /// χ Ẇirr: the part of the plastic work that becomes heat (eq. 8, 20), MPa/s.
     double plastic_dissipation_rate = 0.;
-    /// Ẇthel (eq. 22), sign from thermodynamics (doc/thermodynamics.md).
+    /// Ẇthel = −3Kβ T tr(Δεᵉ)/Δt (eq. 22 with the sign from thermodynamics,
+    /// doc/thermodynamics.md): an elastic expansion cools. MPa/s.
     double thermoelastic_heating_rate = 0.;
+    /// Temperature change of the step if adiabatic: Δt (χẆirr + Ẇthel)/(ρc), K.
+    double adiabatic_temperature_increment = 0.;
     /// Equivalent (visco)plastic strain after the increment.
     double equivalent_plastic_strain = 0.;
+    /// Iterations of the return map (0 in the elastic branch).
+    unsigned int return_iterations = 0;
   };
 
   /**
@@ -119,6 +136,16 @@ namespace anvil
   };
 
   class Scene;
+
+  /// A material point that cannot be updated (e.g. the yield stress vanished
+  /// at a temperature). The mechanics adds where the point is and cuts back.
+  class MaterialPointError : public std::runtime_error
+  {
+  public:
+    explicit MaterialPointError(const std::string &message)
+      : std::runtime_error(message)
+    {}
+  };
 
   /**
    * The factory: `subsection Material` with `set Model = hypoelastic | ...`

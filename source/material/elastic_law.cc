@@ -1,0 +1,61 @@
+#include <anvil/core/scene.h>
+#include <anvil/material/elastic_law.h>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  void ElasticLaw::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Young's modulus", "0", Patterns::Double(0),
+                      "Young's modulus E in MPa at the reference temperature. Give either this or "
+                      "Bulk modulus (the other 0).");
+    prm.declare_entry("Bulk modulus", "0", Patterns::Double(0),
+                      "Bulk modulus K in MPa at the reference temperature (seed eq. 10). Give "
+                      "either this or Young's modulus.");
+    prm.declare_entry("Poisson's ratio", "0.3", Patterns::Double(),
+                      "Poisson's ratio, dimensionless, -1 < nu < 0.5.");
+    prm.declare_entry("Density", "7.8e-9", Patterns::Double(0),
+                      "Mass density rho in t/mm^3 (= N s^2/mm^4); steel 7.8e-9, aluminium 2.7e-9.");
+    prm.declare_entry("Heat capacity", "4.6e8", Patterns::Double(0),
+                      "Specific heat c in mm^2/(s^2 K) (= mJ/(t K)); steel 4.6e8, aluminium 9e8.");
+    prm.declare_entry("Thermal expansion", "0", Patterns::Double(0),
+                      "Linear thermal expansion coefficient beta in 1/K (seed eq. 19).");
+    prm.declare_entry("Reference temperature", "293", Patterns::Double(0),
+                      "Temperature in K at which the moduli are given and thermal strain is zero.");
+    prm.declare_entry("Taylor-Quinney coefficient", "0.9", Patterns::Double(0, 1),
+                      "chi: share of the plastic work that becomes heat (seed sec. 1.4.1), 0 to 1.");
+    prm.enter_subsection("Modulus temperature factor");
+    TemperatureLaw::declare_parameters(prm, "1",
+                                       "dimensionless factor g(T) on K and G, g(T_ref) = 1");
+    prm.leave_subsection();
+  }
+
+  void ElasticLaw::parse_parameters(ParameterHandler &prm, const Scene &scene, const std::string &path)
+  {
+    const double E  = prm.get_double("Young's modulus");
+    const double K  = prm.get_double("Bulk modulus");
+    const double nu = prm.get_double("Poisson's ratio");
+    if (!(nu > -1. && nu < 0.5))
+      scene.fail(path + "/Poisson's ratio", "= " + std::to_string(nu) + ": expected -1 < nu < 0.5");
+    if ((E > 0) == (K > 0))
+      scene.fail(path + "/Young's modulus",
+                 "and 'Bulk modulus': expected exactly one of them > 0 (the other 0)");
+    K0                    = K > 0 ? K : E / (3. * (1. - 2. * nu));
+    G0                    = 3. * K0 * (1. - 2. * nu) / (2. * (1. + nu));
+    density               = prm.get_double("Density");
+    heat_capacity         = prm.get_double("Heat capacity");
+    thermal_expansion     = prm.get_double("Thermal expansion");
+    reference_temperature = prm.get_double("Reference temperature");
+    taylor_quinney        = prm.get_double("Taylor-Quinney coefficient");
+    prm.enter_subsection("Modulus temperature factor");
+    factor.parse_parameters(prm, scene, path + "/Modulus temperature factor", reference_temperature);
+    prm.leave_subsection();
+  }
+
+  SymmetricTensor<4, 3> ElasticLaw::elasticity(const double T) const
+  {
+    const SymmetricTensor<2, 3> I = unit_symmetric_tensor<3>();
+    return bulk_modulus(T) * outer_product(I, I) + 2. * shear_modulus(T) * deviator_tensor<3>();
+  }
+} // namespace anvil
