@@ -4,6 +4,7 @@
 
 #include <anvil/core/input_error.h>
 #include <anvil/core/simulator.h>
+#include <anvil/material/point_driver.h>
 
 #include <iostream>
 
@@ -17,10 +18,16 @@ namespace anvil
       "usage: anvil SCENE.prm [--set 'Section/Entry=value']... [--check]\n"
       "       anvil --print-parameters [SCENE.prm]   every parameter as a .prm file\n"
       "       anvil --help                           this text and every parameter, documented\n"
+      "       anvil --material-point POINT.prm [--set 'Section/Entry=value']... [--check]\n"
+      "                                              drive one material point along a path\n"
+      "       anvil --material-point --print-parameters | --help   the same for a point file\n"
       "\n"
       "  SCENE.prm      the scene to run (deal.II ParameterHandler format)\n"
       "  --set P=V      override entry P (a path like 'Time/End time') with V; repeatable\n"
       "  --check        read and check the scene and its mesh, then stop\n"
+      "  --material-point  the file is a material-point driver file (Material, Path,\n"
+      "                 Output), not a scene: one point along prescribed strain, stress,\n"
+      "                 deformation gradient and temperature paths, written to a CSV\n"
       "Units: mm, N, s, K (stresses in MPa). Results go to Output/Directory.\n"
       "Exit status: 0 done, 2 bad input, 3 the simulation could not be completed.\n";
 
@@ -48,6 +55,49 @@ namespace anvil
       else
         scene.read(declare<3>);
     }
+
+    // --material-point: one material point driven along a path (no scene).
+    // The driver's file has no Dimension or Bodies: only pass two is read.
+    int run_material_point(const std::string                                        &filename,
+                           const std::vector<std::pair<std::string, std::string>> &overrides,
+                           const bool help, const bool print, const bool check, const bool root)
+    {
+      const auto declare = [](ParameterHandler &prm, const std::vector<std::string> &) {
+        MaterialPointDriver::declare_parameters(prm);
+      };
+      if (help || print)
+        {
+          Scene scene = filename.empty() ? Scene() : Scene(filename, overrides);
+          scene.read(declare);
+          if (root)
+            {
+              if (help)
+                std::cout << usage
+                          << "\nMaterial-point driver parameters (with defaults, patterns and "
+                             "documentation):\n\n";
+              scene.parameters().print_parameters(std::cout, help ? ParameterHandler::Text :
+                                                                    ParameterHandler::PRM);
+            }
+          return 0;
+        }
+      if (filename.empty())
+        {
+          if (root)
+            std::cerr << usage;
+          return 2;
+        }
+      Scene scene(filename, overrides);
+      scene.read(declare);
+      MaterialPointDriver driver(scene);
+      if (check)
+        {
+          if (root)
+            std::cout << "anvil: " << filename << " is valid" << std::endl;
+          return 0;
+        }
+      driver.run(root, root ? &std::cout : nullptr);
+      return 0;
+    }
   } // namespace
 
   int run_anvil(int argc, char **argv)
@@ -57,7 +107,7 @@ namespace anvil
 
     std::string                                        filename;
     std::vector<std::pair<std::string, std::string>> overrides;
-    bool help = false, print = false, check = false;
+    bool help = false, print = false, check = false, material_point = false;
     try
       {
         for (int i = 1; i < argc; ++i)
@@ -69,6 +119,16 @@ namespace anvil
               print = true;
             else if (a == "--check")
               check = true;
+            else if (a == "--material-point")
+              material_point = true;
+            else if (a.rfind("--material-point=", 0) == 0)
+              {
+                material_point = true;
+                if (!filename.empty())
+                  throw InputError("more than one file given ('" + filename + "' and '" +
+                                   a.substr(17) + "')");
+                filename = a.substr(17);
+              }
             else if (a == "--set")
               {
                 if (i + 1 >= argc)
@@ -84,6 +144,9 @@ namespace anvil
             else
               throw InputError("more than one scene file given ('" + filename + "' and '" + a + "')");
           }
+
+        if (material_point)
+          return run_material_point(filename, overrides, help, print, check, root);
 
         if (help || print)
           {

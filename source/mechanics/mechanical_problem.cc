@@ -17,6 +17,7 @@
 #include <anvil/mechanics/mechanical_problem.h>
 
 #include <chrono>
+#include <sstream>
 #include <cmath>
 
 namespace anvil
@@ -29,6 +30,9 @@ namespace anvil
     prm.enter_subsection("Mechanics");
     prm.declare_entry("Polynomial degree", "1", Patterns::Integer(1, 2),
                       "Degree of the displacement elements: 1 (Q1) or 2 (Q2).");
+    prm.declare_entry("Temperature", "293", Patterns::Double(0),
+                      "Uniform temperature in K of a scene without a temperature field: the "
+                      "material laws are evaluated at it.");
     prm.enter_subsection("Newton");
     prm.declare_entry("Maximum iterations", "15", Patterns::Integer(1),
                       "Newton iterations per time step before the step is cut back.");
@@ -60,6 +64,7 @@ namespace anvil
   {
     prm.enter_subsection("Mechanics");
     polynomial_degree = prm.get_integer("Polynomial degree");
+    temperature       = prm.get_double("Temperature");
     prm.enter_subsection("Newton");
     max_iterations              = prm.get_integer("Maximum iterations");
     residual_tolerance          = prm.get_double("Residual tolerance");
@@ -181,6 +186,7 @@ namespace anvil
     const MaterialRequest request = with_matrix ? (request_stress | request_tangent) : request_stress;
 
     bool   inverted          = false;
+    material_failure.clear();
     double min_J             = 1;
     unsigned int n_cells     = 0;
     step_internal_work       = 0;
@@ -210,10 +216,26 @@ namespace anvil
                 break;
               }
             kin.reinit(F, F_old);
-            increment.strain_increment   = kin.strain_increment;
-            increment.rotation_increment = kin.rotation_increment;
+            increment.strain_increment      = kin.strain_increment;
+            increment.rotation_increment    = kin.rotation_increment;
+            increment.temperature           = parameters.temperature;
+            increment.temperature_increment = 0;
+            increment.time_step             = current_time_step;
             MaterialPoint &point = *points[cell->active_cell_index() * n_q + q];
-            point.update(increment, request, response);
+            try
+              {
+                point.update(increment, request, response);
+              }
+            catch (const MaterialPointError &e)
+              {
+                // Say where; the step is cut back (all ranks learn it below).
+                std::ostringstream where;
+                where << e.what() << " (material point " << q << " of the cell at "
+                      << cell->center() << ", body id " << cell->material_id() << ")";
+                material_failure = where.str();
+                inverted         = true;
+                break;
+              }
 
             const Tensor<2, 3> P   = first_piola_stress(kin, response.stress);
             const double       JxW = fe_values.JxW(q);
@@ -321,6 +343,22 @@ namespace anvil
   }
 
   template <int dim>
+  std::string MechanicalProblem<dim>::material_failure_message() const
+  {
+    // The first rank that failed tells (all ranks return the same text).
+    const unsigned int rank  = Utilities::MPI::this_mpi_process(mpi_communicator);
+    const unsigned int first = Utilities::MPI::min(material_failure.empty() ?
+                                                     Utilities::MPI::n_mpi_processes(mpi_communicator) :
+                                                     rank,
+                                                   mpi_communicator);
+    if (first == Utilities::MPI::n_mpi_processes(mpi_communicator))
+      return "an element inverted (J <= 0)";
+    std::vector<char> text(material_failure.begin(), material_failure.end());
+    text = Utilities::MPI::broadcast(mpi_communicator, text, first);
+    return std::string(text.begin(), text.end());
+  }
+
+  template <int dim>
   double MechanicalProblem<dim>::residual_norm() const
   {
     return system_rhs.l2_norm();
@@ -366,8 +404,8 @@ namespace anvil
   typename MechanicalProblem<dim>::StepResult
   MechanicalProblem<dim>::solve_step(const double time_old, const double time_new)
   {
-    (void)time_old;
     StepResult result;
+    current_time_step = time_new - time_old;
 
     // Predictor: the first Newton iteration starts from the committed
     // configuration and imposes the jump of the prescribed displacements as
@@ -404,7 +442,7 @@ namespace anvil
       {
         if (!assemble(true, time_new))
           {
-            result.failure = "an element inverted (J <= 0)";
+            result.failure = material_failure_message();
             return result;
           }
         const double r = residual_norm();

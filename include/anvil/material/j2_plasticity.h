@@ -59,7 +59,10 @@ namespace anvil
     double      bulk_modulus() const override { return elastic.bulk_modulus(); }
     double      shear_modulus() const override { return elastic.shear_modulus(); }
     double      density() const override { return elastic.density; }
-    std::string name() const override { return viscosity.active() ? "J2 Perzyna" : "J2"; }
+    std::string name() const override
+    {
+      return !plastic ? "hypoelastic" : viscosity.active() ? "Perzyna" : "J2";
+    }
 
     ElasticLaw   elastic;
     HardeningLaw hardening;

@@ -42,6 +42,7 @@ namespace anvil
     struct Parameters
     {
       unsigned int polynomial_degree            = 1;
+      double       temperature                  = 293;
       unsigned int max_iterations               = 15;
       double       residual_tolerance           = 1e-8;
       double       absolute_residual_tolerance  = 1e-12;
@@ -122,6 +123,7 @@ namespace anvil
     bool assemble(bool with_matrix, double time);
     unsigned int solve_linear_system(dealii::TrilinosWrappers::MPI::Vector &du);
     double       residual_norm() const;
+    std::string  material_failure_message() const;
 
     MPI_Comm                                                 mpi_communicator;
     const dealii::parallel::distributed::Triangulation<dim> &triangulation;
@@ -153,5 +155,7 @@ namespace anvil
     std::vector<std::unique_ptr<MaterialPoint>> points;
     double step_internal_work = 0, work_internal = 0, work_external = 0;
     double assembly_rate = 0;
+    double current_time_step = 1;
+    std::string material_failure; // this rank's, from the last assembly
   };
 } // namespace anvil

@@ -1,0 +1,608 @@
+#include <deal.II/base/numbers.h>
+#include <deal.II/base/point.h>
+#include <deal.II/base/utilities.h>
+
+#include <anvil/core/input_error.h>
+#include <anvil/core/scene.h>
+#include <anvil/material/point_driver.h>
+#include <anvil/mechanics/kinematics.h>
+#include <anvil/output/csv_history.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  namespace
+  {
+    // The 6 independent components of a symmetric 3x3 tensor, in CSV order.
+    constexpr unsigned int component_index[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
+    const char *const      strain_names[6]       = {"exx", "eyy", "ezz", "exy", "eyz", "exz"};
+    const char *const      stress_names[6]       = {"sxx", "syy", "szz", "sxy", "syz", "sxz"};
+
+    const std::string path_control     = "Path/Control";
+    const std::string path_end_time    = "Path/End time";
+    const std::string path_steps       = "Path/Steps";
+    const std::string path_strain      = "Path/Strain";
+    const std::string path_stress      = "Path/Stress";
+    const std::string path_F           = "Path/Deformation gradient";
+    const std::string path_temperature = "Path/Temperature";
+    const std::string path_file        = "Output/File";
+
+    double &component(SymmetricTensor<2, 3> &t, const unsigned int c)
+    {
+      return t[component_index[c][0]][component_index[c][1]];
+    }
+    double component(const SymmetricTensor<2, 3> &t, const unsigned int c)
+    {
+      return t[component_index[c][0]][component_index[c][1]];
+    }
+
+    std::string number(const double x)
+    {
+      std::ostringstream s;
+      s.precision(6);
+      s << x;
+      return s.str();
+    }
+
+    std::string name_list(const std::vector<std::string> &names)
+    {
+      std::string out;
+      for (unsigned int i = 0; i < names.size(); ++i)
+        out += (i ? ", " : "") + names[i];
+      return out;
+    }
+
+    /// "a: expr; b: expr" -> (name, expression) pairs, in order; empty items are skipped.
+    std::vector<std::pair<std::string, std::string>> split_items(const std::string &text,
+                                                                 const Scene       &scene,
+                                                                 const std::string &path)
+    {
+      std::vector<std::pair<std::string, std::string>> items;
+      for (const auto &item : split_outside_parentheses(text, ';'))
+        {
+          if (item.empty())
+            continue;
+          const auto colon = item.find(':');
+          if (colon == std::string::npos || trim(item.substr(0, colon)).empty() ||
+              trim(item.substr(colon + 1)).empty())
+            scene.fail(path, "has the item '" + item +
+                               "': expected ';'-separated 'component: expression' items, "
+                               "e.g. 'exx: 0.01*t; exy: 0'");
+          items.emplace_back(trim(item.substr(0, colon)), trim(item.substr(colon + 1)));
+        }
+      return items;
+    }
+
+    /// Index of @p name in @p names (or in @p aliases), or -1.
+    int find_name(const std::string              &name,
+                  const std::vector<std::string> &names,
+                  const std::vector<std::string> &aliases = {})
+    {
+      for (unsigned int i = 0; i < names.size(); ++i)
+        if (name == names[i] || (i < aliases.size() && name == aliases[i]))
+          return static_cast<int>(i);
+      return -1;
+    }
+
+    /// A small dense solve with partial pivoting: A x = b, b overwritten by x.
+    /// Returns false if A is singular (relative to its largest entry).
+    bool solve(std::vector<std::vector<double>> A, std::vector<double> &b)
+    {
+      const unsigned int n     = b.size();
+      double             scale = 0;
+      for (const auto &row : A)
+        for (const double a : row)
+          scale = std::max(scale, std::abs(a));
+      if (!(scale > 0) || !std::isfinite(scale))
+        return false;
+      for (unsigned int k = 0; k < n; ++k)
+        {
+          unsigned int p = k;
+          for (unsigned int i = k + 1; i < n; ++i)
+            if (std::abs(A[i][k]) > std::abs(A[p][k]))
+              p = i;
+          if (std::abs(A[p][k]) <= 1e-14 * scale)
+            return false;
+          std::swap(A[k], A[p]);
+          std::swap(b[k], b[p]);
+          for (unsigned int i = k + 1; i < n; ++i)
+            {
+              const double m = A[i][k] / A[k][k];
+              for (unsigned int j = k; j < n; ++j)
+                A[i][j] -= m * A[k][j];
+              b[i] -= m * b[k];
+            }
+        }
+      for (unsigned int k = n; k-- > 0;)
+        {
+          for (unsigned int j = k + 1; j < n; ++j)
+            b[k] -= A[k][j] * b[j];
+          b[k] /= A[k][k];
+        }
+      return true;
+    }
+
+    const MaterialRequest all_requests = request_stress | request_tangent |
+                                         request_temperature_derivative | request_dissipation;
+    constexpr unsigned int max_local_iterations = 50;
+  } // namespace
+
+  void MaterialPointDriver::declare_parameters(ParameterHandler &prm)
+  {
+    MaterialFactory::declare_parameters(prm);
+
+    prm.enter_subsection("Path");
+    prm.declare_entry("Control", "strain", Patterns::Selection("strain|deformation gradient"),
+                      "How the point is driven. strain: the components named in Strain are "
+                      "prescribed, all others are stress-controlled (Stress), no rotation. "
+                      "deformation gradient: F(t) is prescribed (Deformation gradient), "
+                      "Hughes-Winget increments with their rotation; Strain and Stress are "
+                      "not used.");
+    prm.declare_entry("End time", "1", Patterns::Double(0),
+                      "Duration of the path in s (> 0); the paths are functions of t in "
+                      "[0, End time].");
+    prm.declare_entry("Steps", "100", Patterns::Integer(0),
+                      "Number of equal increments from t = 0 to End time (at least 1).");
+    prm.declare_entry("Strain", "exx: 0.01*t", Patterns::Anything(),
+                      "Control = strain: the prescribed strain components, a ';'-separated "
+                      "list of 'component: expression' items with components exx eyy ezz exy "
+                      "eyz exz (tensor components, i.e. half the engineering shear strain; "
+                      "dimensionless) and muparser expressions in t (s) and the constant pi, "
+                      "e.g. 'exx: 0.01*t; exy: 0.005*sin(pi*t)'. The strain is the sum of "
+                      "the increments and must be 0 at t = 0.");
+    prm.declare_entry("Stress", "", Patterns::Anything(),
+                      "Control = strain: the stress of the components not named in Strain, "
+                      "in MPa, as 'component: expression' items in t (s) (components sxx syy "
+                      "szz sxy syz sxz, or exx ... exz for the same components). Components "
+                      "named in neither entry have zero stress, so 'Strain = exx: ...' alone "
+                      "is uniaxial stress. A component named in both entries is an error.");
+    prm.declare_entry("Deformation gradient", "F11: 1 + 0.01*t", Patterns::Anything(),
+                      "Control = deformation gradient: F(t) (dimensionless) as ';'-separated "
+                      "'Fij: expression' items, i, j in 1..3, muparser in t (s) and pi, e.g. "
+                      "'F11: 1 + t; F12: 0.5*t'. Components not named are those of the "
+                      "identity; F(0) must be the identity and det F > 0 along the path.");
+    prm.declare_entry("Temperature", "293", Patterns::Anything(),
+                      "Temperature of the point in K as a muparser expression in t (s), "
+                      "e.g. '293 + 100*t'; must stay > 0.");
+    prm.declare_entry("Adiabatic", "false", Patterns::Bool(),
+                      "If true, the point heats by its own dissipation and thermoelastic "
+                      "effect (adiabatic update): the temperature is T(t) of the path plus "
+                      "the accumulated adiabatic temperature increments (K).");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    prm.declare_entry("File", "point.csv", Patterns::FileName(Patterns::FileName::output),
+                      "The CSV history, one row per step (and one for t = 0), relative to "
+                      "the current directory: step, time (s), temperature (K), strain "
+                      "exx..exz, Cauchy stress sxx..sxz, von_mises, pressure (MPa), "
+                      "equivalent_plastic_strain, plastic_work_rate, "
+                      "plastic_dissipation_rate, thermoelastic_heating_rate (MPa/s), "
+                      "return_iterations, local_iterations.");
+    prm.leave_subsection();
+  }
+
+  MaterialPointDriver::~MaterialPointDriver() = default;
+
+  MaterialPointDriver::MaterialPointDriver(Scene &scene)
+    : scene(scene)
+  {
+    ParameterHandler &prm = scene.parameters();
+
+    // The factory names its entries "<prefix>/Material/..."; with the empty
+    // prefix of a driver file that is "/Material/...", which neither reads
+    // well nor finds the line in the file: name the entry without the slash.
+    try
+      {
+        model = MaterialFactory::create(prm, scene, "");
+      }
+    catch (const InputError &e)
+      {
+        const std::string message = e.what();
+        const std::string marker  = ": '/Material/";
+        const auto        at      = message.find(marker);
+        if (at == std::string::npos)
+          throw;
+        const auto close = message.find('\'', at + marker.size());
+        if (close == std::string::npos)
+          throw;
+        const std::string path = message.substr(at + 4, close - at - 4);
+        std::string       rest = message.substr(close + 1);
+        scene.fail(path, trim(rest));
+      }
+
+    prm.enter_subsection("Path");
+    control   = prm.get("Control") == "strain" ? Control::strain : Control::deformation_gradient;
+    end_time  = prm.get_double("End time");
+    const int steps = prm.get_integer("Steps");
+    const std::string strain      = prm.get("Strain");
+    const std::string stress      = prm.get("Stress");
+    const std::string F           = prm.get("Deformation gradient");
+    const std::string temperature_text = prm.get("Temperature");
+    adiabatic = prm.get_bool("Adiabatic");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    file = prm.get("File");
+    prm.leave_subsection();
+
+    if (!(end_time > 0))
+      scene.fail(path_end_time, "= " + number(end_time) + ": expected a duration > 0 s");
+    if (steps < 1)
+      scene.fail(path_steps, "= " + std::to_string(steps) + ": expected at least 1 step");
+    n_steps = steps;
+    if (trim(file).empty())
+      scene.fail(path_file, "is empty: expected a file name such as point.csv");
+
+    temperature = parse(temperature_text, path_temperature, "");
+    if (control == Control::strain)
+      parse_strain_control(strain, stress);
+    else
+      parse_deformation_gradient(F);
+    check_path();
+
+    point = model->create_point();
+  }
+
+  MaterialPointDriver::Expression MaterialPointDriver::parse(const std::string &expression,
+                                                             const std::string &path,
+                                                             const std::string &what) const
+  {
+    auto f = std::make_shared<FunctionParser<1>>(1);
+    // deal.II prints muparser's diagnosis to std::cerr before it throws:
+    // capture it for a one-line message.
+    std::ostringstream diagnosis;
+    std::streambuf    *cerr_buffer = std::cerr.rdbuf(diagnosis.rdbuf());
+    bool               ok          = true;
+    try
+      {
+        f->initialize("t", expression, {{"pi", numbers::PI}}, false);
+        f->value(Point<1>(0.)); // muparser reports unknown names on first evaluation
+      }
+    catch (...)
+      {
+        ok = false;
+      }
+    std::cerr.rdbuf(cerr_buffer);
+    if (!ok)
+      {
+        std::string       reason;
+        const std::string text = diagnosis.str();
+        const auto        m    = text.find("Message:");
+        if (m != std::string::npos)
+          reason = trim(text.substr(m + 8, text.find('\n', m) - m - 8));
+        scene.fail(path, "has an invalid expression '" + expression + "'" +
+                           (what.empty() ? "" : " for " + what) +
+                           (reason.empty() ? "" : " (" + reason + ")") +
+                           ": expected a muparser formula in t (e.g. 0.01*t or "
+                           "if(t<1, t, 1), constant pi)");
+      }
+    return f;
+  }
+
+  double MaterialPointDriver::value(const Expression &f, const double t)
+  {
+    return f->value(Point<1>(t));
+  }
+
+  void MaterialPointDriver::parse_strain_control(const std::string &strain,
+                                                 const std::string &stress)
+  {
+    const std::vector<std::string> strains(strain_names, strain_names + 6);
+    const std::vector<std::string> stresses(stress_names, stress_names + 6);
+
+    strain_controlled.fill(false);
+    for (const auto &[name, expression] : split_items(strain, scene, path_strain))
+      {
+        const int c = find_name(name, strains);
+        if (c < 0)
+          scene.fail(path_strain, "names the unknown component '" + name + "' (expected one of " +
+                                    name_list(strains) + ")");
+        if (strain_controlled[c])
+          scene.fail(path_strain, "names '" + name + "' twice");
+        strain_controlled[c] = true;
+        component_path[c]    = parse(expression, path_strain, name);
+      }
+
+    std::array<bool, 6> named{};
+    for (const auto &[name, expression] : split_items(stress, scene, path_stress))
+      {
+        const int c = find_name(name, stresses, strains);
+        if (c < 0)
+          scene.fail(path_stress, "names the unknown component '" + name + "' (expected one of " +
+                                    name_list(stresses) + ", or " + name_list(strains) + ")");
+        if (named[c])
+          scene.fail(path_stress, "names the component " + strains[c] + " twice");
+        if (strain_controlled[c])
+          scene.fail(path_stress,
+                     "names '" + name + "', which 'Path/Strain' prescribes already: each "
+                     "component is either strain- or stress-controlled");
+        named[c]          = true;
+        component_path[c] = parse(expression, path_stress, name);
+      }
+  }
+
+  void MaterialPointDriver::parse_deformation_gradient(const std::string &text)
+  {
+    for (const auto &[name, expression] : split_items(text, scene, path_F))
+      {
+        if (name.size() != 3 || name[0] != 'F' || name[1] < '1' || name[1] > '3' ||
+            name[2] < '1' || name[2] > '3')
+          scene.fail(path_F, "names the unknown component '" + name +
+                               "' (expected F11, F12, ..., F33)");
+        const unsigned int i = name[1] - '1', j = name[2] - '1';
+        if (F_path[i][j])
+          scene.fail(path_F, "names '" + name + "' twice");
+        F_path[i][j] = parse(expression, path_F, name);
+      }
+  }
+
+  void MaterialPointDriver::check_path()
+  {
+    // Evaluate the whole path once, before any work.
+    for (unsigned int k = 0; k <= n_steps; ++k)
+      {
+        const double t  = end_time * k / n_steps;
+        const double T  = value(temperature, t);
+        const auto   at = " at t = " + number(t) + " s";
+        if (!std::isfinite(T) || !(T > 0))
+          scene.fail(path_temperature, "is " + number(T) + " K" + at + ": expected T > 0");
+        if (control == Control::strain)
+          for (unsigned int c = 0; c < 6; ++c)
+            if (component_path[c])
+              {
+                const double v = value(component_path[c], t);
+                const auto  &path = strain_controlled[c] ? path_strain : path_stress;
+                if (!std::isfinite(v))
+                  scene.fail(path, "gives " + number(v) + " for " + strain_names[c] + at);
+                if (k == 0 && strain_controlled[c] && std::abs(v) > 1e-14)
+                  scene.fail(path, std::string("gives ") + strain_names[c] + " = " + number(v) +
+                                     " at t = 0: the point starts unstrained (expected 0)");
+              }
+        if (control == Control::deformation_gradient)
+          {
+            Tensor<2, 3> F = unit_symmetric_tensor<3>();
+            for (unsigned int i = 0; i < 3; ++i)
+              for (unsigned int j = 0; j < 3; ++j)
+                if (F_path[i][j])
+                  {
+                    F[i][j] = value(F_path[i][j], t);
+                    if (!std::isfinite(F[i][j]))
+                      scene.fail(path_F, "gives F" + std::to_string(i + 1) +
+                                           std::to_string(j + 1) + " = " + number(F[i][j]) + at);
+                  }
+            if (k == 0 && (F - Tensor<2, 3>(unit_symmetric_tensor<3>())).norm() > 1e-12)
+              {
+                std::string values;
+                for (unsigned int i = 0; i < 3; ++i)
+                  for (unsigned int j = 0; j < 3; ++j)
+                    if (std::abs(F[i][j] - (i == j)) > 1e-12)
+                      values += std::string(values.empty() ? "" : ", ") + "F" +
+                                std::to_string(i + 1) + std::to_string(j + 1) + " = " +
+                                number(F[i][j]);
+                scene.fail(path_F, "gives " + values +
+                                     " at t = 0: expected F(0) = I (the point starts undeformed)");
+              }
+            const double J = determinant(F);
+            if (!(J > 0))
+              scene.fail(path_F, "gives det F = " + number(J) + at + ": expected det F > 0");
+          }
+      }
+  }
+
+  unsigned int MaterialPointDriver::strain_step(const unsigned int     step,
+                                                const double           t_new,
+                                                SymmetricTensor<2, 3> &strain,
+                                                MaterialIncrement     &increment,
+                                                MaterialResponse      &response)
+  {
+    // Prescribed components: reach the path's value exactly; free ones start at 0.
+    std::vector<unsigned int> free;
+    std::vector<double>       target;
+    SymmetricTensor<2, 3>     de;
+    for (unsigned int c = 0; c < 6; ++c)
+      if (strain_controlled[c])
+        component(de, c) = value(component_path[c], t_new) - component(strain, c);
+      else
+        {
+          free.push_back(c);
+          target.push_back(component_path[c] ? value(component_path[c], t_new) : 0.);
+        }
+
+    const unsigned int n = free.size();
+    // dσ/dε_c for a unit tensor component ε_c (both ij and ji for shear).
+    std::array<SymmetricTensor<2, 3>, 6> unit;
+    for (unsigned int c = 0; c < 6; ++c)
+      component(unit[c], c) = 1.;
+
+    for (unsigned int it = 0;; ++it)
+      {
+        increment.strain_increment = de;
+        response                   = MaterialResponse();
+        point->update(increment, all_requests, response);
+
+        std::vector<double> r(n);
+        double              norm = 0;
+        for (unsigned int i = 0; i < n; ++i)
+          {
+            r[i] = component(response.stress, free[i]) - target[i];
+            norm += r[i] * r[i];
+          }
+        norm = std::sqrt(norm);
+        const double tolerance = 1e-10 * std::max(1., response.stress.norm());
+        if (!std::isfinite(norm))
+          throw SimulationError("material point, step " + std::to_string(step) + " (t = " +
+                                number(t_new) + " s): the stress is not finite");
+        if (norm <= tolerance)
+          {
+            strain += de;
+            return it;
+          }
+        if (it == max_local_iterations)
+          throw SimulationError("material point, step " + std::to_string(step) + " (t = " +
+                                number(t_new) + " s): the stress-controlled components did not "
+                                "converge in " + std::to_string(max_local_iterations) +
+                                " local iterations (|r| = " + number(norm) +
+                                " MPa, tolerance " + number(tolerance) +
+                                " MPa); try more Steps");
+
+        std::vector<std::vector<double>> A(n, std::vector<double>(n));
+        for (unsigned int j = 0; j < n; ++j)
+          {
+            const SymmetricTensor<2, 3> column = response.tangent * unit[free[j]];
+            for (unsigned int i = 0; i < n; ++i)
+              A[i][j] = component(column, free[i]);
+          }
+        if (!solve(A, r))
+          {
+            std::string names;
+            for (const unsigned int c : free)
+              names += std::string(names.empty() ? "" : " ") + stress_names[c];
+            throw SimulationError("material point, step " + std::to_string(step) + " (t = " +
+                                  number(t_new) + " s): the tangent restricted to the "
+                                  "stress-controlled components (" + names +
+                                  ") is singular: the prescribed stress cannot be reached");
+          }
+        for (unsigned int i = 0; i < n; ++i)
+          component(de, free[i]) -= r[i];
+      }
+  }
+
+  void MaterialPointDriver::run(const bool write, std::ostream *log)
+  {
+    CsvHistory csv;
+    if (write)
+      {
+        const std::filesystem::path parent = std::filesystem::path(file).parent_path();
+        std::error_code             ignored;
+        if (!parent.empty())
+          std::filesystem::create_directories(parent, ignored);
+      }
+    std::vector<std::string> columns = {"step", "time", "temperature"};
+    for (const auto *name : strain_names)
+      columns.emplace_back(name);
+    for (const auto *name : stress_names)
+      columns.emplace_back(name);
+    for (const auto *name : {"von_mises", "pressure", "equivalent_plastic_strain",
+                             "plastic_work_rate", "plastic_dissipation_rate",
+                             "thermoelastic_heating_rate", "return_iterations",
+                             "local_iterations"})
+      columns.emplace_back(name);
+    csv.open(file, columns, write);
+    if (write && !csv.is_open())
+      scene.fail(path_file, "= '" + file + "' cannot be opened for writing");
+
+    SymmetricTensor<2, 3> strain;
+    MaterialResponse      response;
+    response.stress = point->committed_stress();
+    double       T  = value(temperature, 0.);
+    double       adiabatic_heating = 0; // accumulated adiabatic ΔT, K
+    unsigned int max_return = 0, max_local = 0;
+
+    const auto add_row = [&](const unsigned int step, const double t, const unsigned int local) {
+      const SymmetricTensor<2, 3> &s = response.stress;
+      std::vector<double>          row = {double(step), t, T};
+      for (unsigned int c = 0; c < 6; ++c)
+        row.push_back(component(strain, c));
+      for (unsigned int c = 0; c < 6; ++c)
+        row.push_back(component(s, c));
+      const SymmetricTensor<2, 3> dev = deviator(s);
+      row.push_back(std::sqrt(1.5 * (dev * dev)));
+      row.push_back(-trace(s) / 3.);
+      row.push_back(response.equivalent_plastic_strain);
+      row.push_back(response.plastic_work_rate);
+      row.push_back(response.plastic_dissipation_rate);
+      row.push_back(response.thermoelastic_heating_rate);
+      row.push_back(response.return_iterations);
+      row.push_back(local);
+      for (double &v : row)
+        v += 0.; // -0 -> 0
+      csv.add_row(row);
+    };
+    add_row(0, 0., 0);
+
+    const auto F_at = [&](const double t) {
+      Tensor<2, 3> F = unit_symmetric_tensor<3>();
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int j = 0; j < 3; ++j)
+          if (F_path[i][j])
+            F[i][j] = value(F_path[i][j], t);
+      return F;
+    };
+    Tensor<2, 3>          F_old = F_at(0.);
+    IncrementalKinematics kinematics;
+
+    const double dt = end_time / n_steps;
+    for (unsigned int k = 1; k <= n_steps; ++k)
+      {
+        const double t = end_time * k / n_steps;
+
+        // The temperature without this step's own adiabatic heating: the
+        // point adds that itself when increment.adiabatic is set.
+        const double      T_start = value(temperature, t) + adiabatic_heating;
+        MaterialIncrement increment;
+        increment.temperature           = T_start;
+        increment.temperature_increment = T_start - T;
+        increment.time_step             = dt;
+        increment.adiabatic             = adiabatic;
+
+        unsigned int local = 0;
+        try
+          {
+            if (control == Control::strain)
+              {
+                increment.rotation_increment = unit_symmetric_tensor<3>();
+                local = strain_step(k, t, strain, increment, response);
+              }
+            else
+              {
+                const Tensor<2, 3> F = F_at(t);
+                kinematics.reinit(F, F_old);
+                increment.strain_increment   = kinematics.strain_increment;
+                increment.rotation_increment = kinematics.rotation_increment;
+                response                     = MaterialResponse();
+                point->update(increment, all_requests, response);
+                const Tensor<2, 3> &R = kinematics.rotation_increment;
+                strain = symmetrize(R * Tensor<2, 3>(strain) * transpose(R)) +
+                         kinematics.strain_increment;
+                F_old = F;
+              }
+          }
+        catch (const MaterialPointError &e)
+          {
+            throw SimulationError("material point, step " + std::to_string(k) + " (t = " +
+                                  number(t) + " s): " + e.what());
+          }
+        point->commit();
+
+        if (adiabatic)
+          adiabatic_heating += response.adiabatic_temperature_increment;
+        T = value(temperature, t) + adiabatic_heating;
+        max_return = std::max(max_return, response.return_iterations);
+        max_local  = std::max(max_local, local);
+        add_row(k, t, local);
+      }
+
+    if (log)
+      {
+        const SymmetricTensor<2, 3> &s = response.stress;
+        std::ostringstream           line;
+        line.precision(6);
+        line << "anvil: material point (" << model->name() << ", "
+             << (control == Control::strain ? "strain" : "deformation gradient")
+             << " control): " << n_steps << " steps to t = " << end_time
+             << " s, max return iterations " << max_return << ", max local iterations "
+             << max_local << "; final stress (MPa)";
+        for (unsigned int c = 0; c < 6; ++c)
+          line << (c ? ", " : " ") << stress_names[c] << " = " << component(s, c);
+        line << ", T = " << T << " K; history in " << file;
+        *log << line.str() << std::endl;
+      }
+  }
+} // namespace anvil
