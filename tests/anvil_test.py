@@ -41,6 +41,32 @@ def run(scene, sets=(), np=1, name=None, expect_status=0):
     return out, summary, p.stdout
 
 
+POINT_OUT = os.path.join(WORK_DIR, "output", "material_point")
+
+
+def run_point(prm, sets=(), name=None, expect_status=0, extra=()):
+    """Run anvil --material-point on prm with --set overrides, the CSV going
+    to output/material_point/<name>.csv; returns (csv path, stdout, stderr)."""
+    name = name or os.path.splitext(os.path.basename(prm))[0]
+    os.makedirs(POINT_OUT, exist_ok=True)
+    csv_path = os.path.join(POINT_OUT, name + ".csv")
+    if os.path.exists(csv_path):
+        os.remove(csv_path)
+    cmd = [ANVIL, "--material-point", prm, "--set", "Output/File=" + csv_path]
+    for s in sets:
+        cmd += ["--set", s]
+    cmd += list(extra)
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+               DEAL_II_NUM_THREADS="1")
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=POINT_OUT)
+    if p.returncode != expect_status:
+        print(p.stdout)
+        print(p.stderr)
+        raise SystemExit("anvil exited with %d (expected %d): %s" % (p.returncode, expect_status, " ".join(cmd)))
+    return csv_path, p.stdout, p.stderr
+
+
+
 def read_csv(path):
     """Columns of a CSV file as a dict of float lists."""
     with open(path) as f:

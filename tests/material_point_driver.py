@@ -19,7 +19,7 @@ import math
 import os
 import subprocess
 
-from anvil_test import ANVIL, SOURCE_DIR, WORK_DIR, read_csv, check, close, finish
+from anvil_test import ANVIL, SOURCE_DIR, WORK_DIR, read_csv, check, close, finish, run_point
 
 E, nu = 200000.0, 0.3
 G = E / (2 * (1 + nu))
@@ -29,27 +29,6 @@ os.makedirs(OUT, exist_ok=True)
 
 def example(name):
     return os.path.join(SOURCE_DIR, "prm", "material_point", name + ".prm")
-
-
-def run_point(prm, sets=(), name=None, expect_status=0, extra=()):
-    """Run anvil --material-point on prm with --set overrides, the CSV going
-    to output/material_point/<name>.csv; returns (csv path, stdout, stderr)."""
-    name = name or os.path.splitext(os.path.basename(prm))[0]
-    csv_path = os.path.join(OUT, name + ".csv")
-    if os.path.exists(csv_path):
-        os.remove(csv_path)
-    cmd = [ANVIL, "--material-point", prm, "--set", "Output/File=" + csv_path]
-    for s in sets:
-        cmd += ["--set", s]
-    cmd += list(extra)
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-               DEAL_II_NUM_THREADS="1")
-    p = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=OUT)
-    if p.returncode != expect_status:
-        print(p.stdout)
-        print(p.stderr)
-        raise SystemExit("anvil exited with %d (expected %d): %s" % (p.returncode, expect_status, " ".join(cmd)))
-    return csv_path, p.stdout, p.stderr
 
 
 def rel_error(value, expected):

@@ -1,0 +1,329 @@
+// Stability of the material point update at the extremes, reported as a table.
+//
+// Each case is one material point (zero initial stress, ε̄ = 0) and ONE update
+// with a 3D strain increment of uniaxial-strain (Δε = a e1⊗e1) or pure-shear
+// (Δε = a (e1⊗e2 + e2⊗e1)) type, a a multiple of the yield strain σ0/E.
+// The test recomputes, independently of the library and from the parameters it
+// chose (linear hardening σᵥ = θ(T)(σ0 + h ε̄), θ = 1 − ω(T − T_ref),
+// G(T) = G0 g(T)):
+//   - the criterion residual from the returned state:
+//       J2:      |σ̄ − σᵥ(ε̄)| / σᵥ(ε̄)
+//       Perzyna: |σ̄ − σᵥ(ε̄) − η^{1/n} (Δε̄/Δt)^{1/m}| / σ̄        (eq. 18)
+//   - the consistency of the plastic strain with the radial return,
+//       |σ̄ − (q_trial − 3GΔε̄)| / σ̄,  q_trial = √(3/2)|dev(H:Δε)|;
+//   - the branch (plastic iff q_trial > σᵥ(0, T)).
+// Cases: increment size 1..1000 × yield strain (J2); Perzyna rate sensitivity
+// m = 1..100; Perzyna η from 0 to 1e6 (η → 0 must reproduce J2 to 1e-10);
+// linear thermal softening up to and beyond θ = 0 (σᵥ ≤ 0 must be reported
+// as anvil::MaterialPointError), also with a temperature-dependent modulus;
+// near-incompressibility ν = 0.499.
+//
+// Passes if every case converged (≤ 200 return iterations) with criterion and
+// consistency residuals ≤ 1e-10, or failed with MaterialPointError exactly
+// where σᵥ ≤ 0, and η → 0 matched J2 to 1e-10.
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <anvil/core/scene.h>
+#include <anvil/material/material_point.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace dealii;
+using namespace anvil;
+
+namespace
+{
+  constexpr double tolerance      = 1e-10;
+  constexpr unsigned int max_iter = 200;
+
+  /// The parameters of one case; the test builds the input from them and
+  /// uses the same numbers in its closed forms.
+  struct Parameters
+  {
+    bool   perzyna = false;
+    double E = 200000, nu = 0.3;
+    double sigma0 = 250, h = 1000;
+    double omega = 0, T_ref = 293;  // thermal softening of the yield stress (0: none)
+    double omega_g = 0;             // modulus temperature factor g = 1 − ω_g (T − 293)
+    double eta = 0, n = 1, m = 1;   // Perzyna
+    double dt = 1e-3;               // s
+    double T  = 293;                // K
+    char   type       = 'u';        // 'u' uniaxial strain, 's' pure shear
+    double multiple   = 10;         // increment / yield strain σ0/E
+    bool   compare_j2 = false;      // also run rate-independent J2 and compare
+
+    std::string input() const
+    {
+      std::ostringstream s;
+      s.precision(17);
+      s << "set Model = " << (perzyna ? "Perzyna" : "J2") << "\n"
+        << "subsection Elasticity\n set Young's modulus = " << E << "\n set Poisson's ratio = " << nu
+        << "\n set Reference temperature = 293\n";
+      if (omega_g != 0)
+        s << " subsection Modulus temperature factor\n  set Model = linear\n  set Softening = "
+          << omega_g << "\n end\n";
+      s << "end\n"
+        << "subsection Hardening\n set Model = linear\n set Initial yield stress = " << sigma0
+        << "\n set Hardening modulus = " << h << "\n";
+      if (omega != 0)
+        s << " subsection Thermal softening\n  set Model = linear\n  set Softening coefficient = "
+          << omega << "\n  set Reference temperature = " << T_ref << "\n end\n";
+      s << "end\n";
+      if (perzyna)
+        s << "subsection Viscosity\n subsection Eta\n  set Value = " << eta
+          << "\n end\n subsection n\n  set Value = " << n << "\n end\n subsection m\n  set Value = "
+          << m << "\n end\nend\n";
+      return s.str();
+    }
+
+    // Closed forms, independent of the library.
+    double theta() const { return omega != 0 ? 1 - omega * (T - T_ref) : 1.; }
+    double G() const { return E / (2 * (1 + nu)) * (1 - omega_g * (T - 293)); }
+    double K() const { return E / (3 * (1 - 2 * nu)) * (1 - omega_g * (T - 293)); }
+    double yield(const double eps) const { return theta() * (sigma0 + h * eps); }
+    double overstress(const double dp) const
+    {
+      return perzyna && eta > 0 && dp > 0 ? std::pow(eta, 1 / n) * std::pow(dp / dt, 1 / m) : 0.;
+    }
+    SymmetricTensor<2, 3> increment() const
+    {
+      const double          a = multiple * sigma0 / E;
+      SymmetricTensor<2, 3> de;
+      if (type == 'u')
+        de[0][0] = a;
+      else
+        de[0][1] = a;
+      return de;
+    }
+  };
+
+  double von_mises(const SymmetricTensor<2, 3> &s) { return std::sqrt(1.5) * deviator(s).norm(); }
+
+  std::shared_ptr<const MaterialModel> make_model(const std::string &settings)
+  {
+    ParameterHandler prm;
+    MaterialFactory::declare_parameters(prm);
+    prm.parse_input_from_string("subsection Material\n" + settings + "end\n");
+    return MaterialFactory::create(prm, Scene(), "");
+  }
+
+  MaterialResponse run(const Parameters &p)
+  {
+    const auto        model = make_model(p.input());
+    auto              point = model->create_point();
+    MaterialIncrement inc;
+    inc.strain_increment      = p.increment();
+    inc.temperature           = p.T;
+    inc.temperature_increment = 0;
+    inc.time_step             = p.dt;
+    MaterialResponse response;
+    point->update(inc, request_stress | request_tangent, response);
+    return response;
+  }
+
+  std::string number(const double x, const char *format = "%.3e")
+  {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, format, x);
+    return buffer;
+  }
+
+  unsigned int n_cases = 0, n_passed = 0, n_expected_errors = 0;
+
+  void header(const std::string &title)
+  {
+    std::cout << "\n" << title << "\n";
+    std::printf("%-26s %-34s %5s %5s %11s %10s %9s %9s %9s %4s\n", "case", "parameters", "iter",
+                "conv", "sigma_eq", "dp", "crit.res", "cons.res", "vs J2", "ok");
+  }
+
+  void check(const std::string &name, const std::string &parameters, const Parameters &p)
+  {
+    ++n_cases;
+    const bool expect_error = !(p.yield(0) > 0);
+
+    // q_trial = √(3/2)|dev(H:Δε)| with H = K δ⊗δ + 2G I_dev at T.
+    const SymmetricTensor<2, 3> I       = unit_symmetric_tensor<3>();
+    const SymmetricTensor<4, 3> H       = p.K() * outer_product(I, I) + 2 * p.G() * deviator_tensor<3>();
+    const double                q_trial = von_mises(H * p.increment());
+    const bool                  plastic = q_trial > p.yield(0);
+
+    MaterialResponse r;
+    std::string      error;
+    bool             other_exception = false;
+    try
+      {
+        r = run(p);
+      }
+    catch (const MaterialPointError &e)
+      {
+        error = e.what();
+      }
+    catch (const std::exception &e)
+      {
+        error           = std::string("unexpected exception: ") + e.what();
+        other_exception = true;
+      }
+
+    if (!error.empty())
+      {
+        const bool ok = expect_error && !other_exception;
+        n_expected_errors += ok;
+        n_passed += ok;
+        std::printf("%-26s %-34s %5s %5s %11s %10s %9s %9s %9s %4s\n", name.c_str(),
+                    parameters.c_str(), "-", "error", "-", "-", "-", "-", "-", ok ? "yes" : "NO");
+        std::cout << "    " << (ok ? "expected clear error (sigma_v <= 0): " : "UNEXPECTED: ")
+                  << error << "\n";
+        return;
+      }
+
+    const double sigma = von_mises(r.stress);
+    const double dp    = r.equivalent_plastic_strain;
+    const double Y     = p.yield(dp);
+    double       criterion;
+    if (dp > 0)
+      criterion = p.perzyna ? std::abs(sigma - Y - p.overstress(dp)) / sigma :
+                              std::abs(sigma - Y) / Y;
+    else // elastic branch: the criterion must not be violated (f ≤ 0)
+      criterion = std::max(sigma - Y, 0.) / Y;
+    const double consistency = std::abs(sigma - (q_trial - 3 * p.G() * dp)) / sigma;
+
+    double difference = -1;
+    if (p.compare_j2)
+      {
+        Parameters j2 = p;
+        j2.perzyna    = false;
+        const auto rj = run(j2);
+        difference    = (r.stress - rj.stress).norm() / rj.stress.norm();
+      }
+    const bool must_match = p.compare_j2 && p.eta <= 1e-12;
+
+    bool ok = !expect_error && r.return_iterations <= max_iter && criterion <= tolerance &&
+              consistency <= tolerance && (dp > 0) == plastic;
+    if (must_match)
+      ok = ok && difference <= tolerance;
+    n_passed += ok;
+
+    std::printf("%-26s %-34s %5u %5s %11.5e %10.4e %9.2e %9.2e %9s %4s\n", name.c_str(),
+                parameters.c_str(), r.return_iterations, dp > 0 ? "yes" : "elast",
+                sigma, dp, criterion, consistency,
+                difference < 0 ? "-" : number(difference, "%.2e").c_str(), ok ? "yes" : "NO");
+    if (expect_error)
+      std::cout << "    FAILED: sigma_v(0, T) = " << p.yield(0)
+                << " MPa <= 0 but the update did not throw MaterialPointError\n";
+    else if ((dp > 0) != plastic)
+      std::cout << "    FAILED: wrong branch (q_trial = " << q_trial
+                << ", sigma_v = " << p.yield(0) << ")\n";
+    else if (!ok)
+      std::cout << "    FAILED: q_trial = " << q_trial << " MPa, sigma_v(eps) = " << Y
+                << " MPa, overstress " << p.overstress(dp) << " MPa\n";
+  }
+
+  std::string type_name(const char type) { return type == 'u' ? "uniax" : "shear"; }
+} // namespace
+
+int main()
+{
+  std::cout << "Material point stability at the extremes: one update from the virgin state.\n"
+               "E = 200000 MPa, nu = 0.3 (unless stated), linear hardening sigma_v = theta(T) "
+               "(250 + 1000 eps) MPa,\nyield strain 1.25e-3; 'uniax' = uniaxial strain, 'shear' = "
+               "pure shear increment.\n"
+               "crit.res: J2 |s - sv|/sv, Perzyna |s - sv - eta^(1/n) (dp/dt)^(1/m)|/s "
+               "(elastic: max(s - sv, 0)/sv);\n"
+               "cons.res: |s - (q_trial - 3 G dp)|/s;  vs J2: |sigma - sigma_J2|/|sigma_J2|.\n";
+
+  header("1. Increment size, rate-independent J2, linear hardening");
+  for (const char type : {'u', 's'})
+    for (const double k : {1., 10., 100., 1000.})
+      {
+        Parameters p;
+        p.type     = type;
+        p.multiple = k;
+        check("J2 " + number(k, "%g") + "x " + type_name(type), "s0=250 h=1000", p);
+      }
+
+  header("2. Perzyna rate sensitivity, eta = 100 MPa s, n = 1, dt = 1e-3 s, 100x uniaxial strain");
+  for (const double m : {1., 2., 5., 10., 20., 50., 100.})
+    {
+      Parameters p;
+      p.perzyna  = true;
+      p.eta      = 100;
+      p.m        = m;
+      p.multiple = 100;
+      check("Perzyna m=" + number(m, "%g"), "eta=100 n=1 m=" + number(m, "%g") + " dt=1e-3", p);
+    }
+
+  header("3. Perzyna viscosity, n = 1, dt = 1e-3 s, 10x uniaxial strain (eta <= 1e-12 must equal "
+         "J2)");
+  for (const double m : {1., 5.})
+    for (const double eta : {0., 1e-12, 1e-6, 1e-3, 1., 1e3, 1e6})
+      {
+        Parameters p;
+        p.perzyna    = true;
+        p.eta        = eta;
+        p.m          = m;
+        p.multiple   = 10;
+        p.compare_j2 = true;
+        check("Perzyna eta=" + number(eta, "%g"), "eta=" + number(eta, "%g") + " n=1 m=" +
+                                                    number(m, "%g") + " dt=1e-3",
+              p);
+      }
+
+  header("4. Thermal softening theta = 1 - 2e-3 (T - 293), J2, 10x pure shear (theta = 0 at 793 K)");
+  for (const double omega_g : {0., 4e-4})
+    for (const double T : {293., 500., 700., 780., 790., 793., 800.})
+      {
+        Parameters p;
+        p.omega    = 2e-3;
+        p.omega_g  = omega_g;
+        p.T        = T;
+        p.type     = 's';
+        p.multiple = 10;
+        check("J2 T=" + number(T, "%g") + (omega_g != 0 ? " +modulus" : ""),
+              "theta=" + number(p.theta(), "%.3g") +
+                (omega_g != 0 ? " g=" + number(1 - omega_g * (T - 293), "%.3g") : ""),
+              p);
+      }
+  for (const double T : {293., 700., 790., 793.})
+    {
+      Parameters p;
+      p.perzyna  = true;
+      p.eta      = 100;
+      p.m        = 5;
+      p.omega    = 2e-3;
+      p.omega_g  = 4e-4;
+      p.T        = T;
+      p.type     = 's';
+      p.multiple = 10;
+      check("Perzyna T=" + number(T, "%g") + " +modulus",
+            "m=5 theta=" + number(p.theta(), "%.3g") + " g=" + number(1 - 4e-4 * (T - 293), "%.3g"),
+            p);
+    }
+
+  header("5. Near-incompressible nu = 0.499, 100x yield strain");
+  for (const bool perzyna : {false, true})
+    for (const char type : {'u', 's'})
+      {
+        Parameters p;
+        p.nu       = 0.499;
+        p.perzyna  = perzyna;
+        p.eta      = 100;
+        p.m        = 10;
+        p.type     = type;
+        p.multiple = 100;
+        check(std::string(perzyna ? "Perzyna" : "J2") + " nu=0.499 " + type_name(type),
+              perzyna ? "eta=100 n=1 m=10 dt=1e-3" : "s0=250 h=1000", p);
+      }
+
+  const bool ok = n_passed == n_cases;
+  std::cout << "\n"
+            << (ok ? "PASS" : "FAIL") << ": " << n_passed << " of " << n_cases << " cases ok ("
+            << n_expected_errors << " expected clear errors where sigma_v <= 0)" << std::endl;
+  return ok ? 0 : 1;
+}
