@@ -234,7 +234,7 @@ namespace anvil
       const double                K    = el.bulk_modulus(T);
       const double                G    = el.shear_modulus(T);
       const double                beta = el.thermal_expansion;
-      const SymmetricTensor<2, 3> I    = unit_symmetric_tensor<3>();
+      static const SymmetricTensor<2, 3> I = unit_symmetric_tensor<3>();
 
       // Trial state: rotated σ_n plus H(T) : (Δε − βΔT I), eq. (9), (10), (19).
       const Tensor<2, 3> &R = inc.rotation_increment;
@@ -276,20 +276,24 @@ namespace anvil
 
       if (request & request_tangent)
         {
-          const SymmetricTensor<4, 3> I_dev = deviator_tensor<3>();
+          // Constant fourth-order tensors, built once (building them per call
+          // cost a tenth of the assembly).
+          static const SymmetricTensor<4, 3> I_dev = deviator_tensor<3>();
+          static const SymmetricTensor<4, 3> IxI   = outer_product(I, I);
+          static const SymmetricTensor<4, 3> I_sym = identity_tensor<3>();
           if (dp > 0)
             {
               // Consistent tangent of the radial return (Simo & Hughes 1998, box 3.2,
               // with H' including the viscous term of eq. 18).
               const double a = 3 * G * dp / q_trial, b = 3 * G / (3 * G + H);
               const SymmetricTensor<4, 3> nn = outer_product(n, n);
-              response.tangent = K * outer_product(I, I) + 2 * G * ((1 - a) * I_dev + (a - b) * nn);
+              response.tangent = K * IxI + 2 * G * ((1 - a) * I_dev + (a - b) * nn);
               response.sensitivity_is_identity    = false;
-              response.rotated_stress_sensitivity = identity_tensor<3>() - b * nn - a * (I_dev - nn);
+              response.rotated_stress_sensitivity = I_sym - b * nn - a * (I_dev - nn);
             }
           else
             {
-              response.tangent                 = K * outer_product(I, I) + 2 * G * I_dev;
+              response.tangent                 = K * IxI + 2 * G * I_dev;
               response.sensitivity_is_identity = true;
             }
         }

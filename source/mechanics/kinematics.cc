@@ -1,5 +1,7 @@
 #include <anvil/mechanics/kinematics.h>
 
+#include <array>
+
 namespace anvil
 {
   using namespace dealii;
@@ -47,42 +49,68 @@ namespace anvil
     const Tensor<2, 3> I_plus_Rh = I + kin.half_rotation;
     const Tensor<2, 3> Rh_T      = transpose(kin.half_rotation);
     const Tensor<2, 3> mid_Rh_T  = Tensor<2, 3>(kin.mid_strain) * Rh_T;
+    const Tensor<2, 3> PM        = I_plus_Rh * mid_Rh_T;
+    const Tensor<2, 3> QS        = one_plus_R * sn_RT;
+
+    // δF = e_k ⊗ e_L gives δΔL = a ⊗ b with a = (I − ½ΔL) e_k, b = F½⁻ᵀ e_L, so
+    // every product below is a sum of outer products of vectors computed once:
+    //   R_h sym(δΔL) R_hᵀ = ½[(R_h a)⊗(R_h b) + (R_h b)⊗(R_h a)]
+    //   δR_h Δε_mid R_hᵀ  = ⅛[(A_h a)⊗(PMᵀ b) − (A_h b)⊗(PMᵀ a)],  PM = (I + R_h) Δε_mid R_hᵀ
+    //   δΔR σₙ ΔRᵀ        = ¼[(A a)⊗(QSᵀ b) − (A b)⊗(QSᵀ a)],      QS = (I + ΔR) σₙ ΔRᵀ
+    struct Images
+    {
+      Tensor<1, 3> Ah, pm, Rh, A, qs;
+    };
+    auto images = [&](const Tensor<1, 3> &v) {
+      return Images{kin.A_half_inv * v, transpose(PM) * v, kin.half_rotation * v, kin.A_inv * v,
+                    transpose(QS) * v};
+    };
+    std::array<Images, dim> a_img, b_img;
+    for (unsigned int k = 0; k < dim; ++k)
+      {
+        Tensor<1, 3> a, b;
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            a[i] = I_minus[i][k];
+            b[i] = kin.F_half_inv[k][i];
+          }
+        a_img[k] = images(a);
+        b_img[k] = images(b);
+      }
 
     Tensor<4, dim> A;
-    // One directional derivative per unit direction δF = e_k ⊗ e_L; products
-    // with δF are outer products of one column and one row.
     for (unsigned int k = 0; k < dim; ++k)
       for (unsigned int L = 0; L < dim; ++L)
         {
-          Tensor<2, 3> ddL; // (I − ½ΔL) e_k ⊗ e_L F½⁻¹
+          const Images &a = a_img[k], &b = b_img[L];
+          SymmetricTensor<2, 3> deps, drot;
           for (unsigned int i = 0; i < 3; ++i)
-            for (unsigned int j = 0; j < 3; ++j)
-              ddL[i][j] = I_minus[i][k] * kin.F_half_inv[L][j];
-          const Tensor<2, 3> dspin = 0.5 * (ddL - transpose(ddL));
-          // δ(R_h Δε R_hᵀ), R_h = (I − ¼Δω)⁻¹(I + ¼Δω): δR_h = ¼ A_h⁻¹ δΔω (I + R_h).
-          const Tensor<2, 3> dRh = 0.25 * kin.A_half_inv * dspin * I_plus_Rh;
-          const Tensor<2, 3> Y   = dRh * mid_Rh_T;
-          const SymmetricTensor<2, 3> deps =
-            symmetrize(kin.half_rotation * Tensor<2, 3>(symmetrize(ddL)) * Rh_T + Y +
-                       transpose(Y));
-          SymmetricTensor<2, 3> dsigma_sym = response.tangent * deps;
-
-          // Rotation of the previous stress.
-          const Tensor<2, 3> dR = 0.5 * kin.A_inv * dspin * one_plus_R;
-          const Tensor<2, 3> X  = dR * sn_RT;
-          const SymmetricTensor<2, 3> drot = symmetrize(X + transpose(X));
+            for (unsigned int j = i; j < 3; ++j)
+              {
+                const double y_ij = a.Ah[i] * b.pm[j] - b.Ah[i] * a.pm[j];
+                const double y_ji = a.Ah[j] * b.pm[i] - b.Ah[j] * a.pm[i];
+                deps[i][j] = 0.5 * (a.Rh[i] * b.Rh[j] + b.Rh[i] * a.Rh[j]) + 0.125 * (y_ij + y_ji);
+                const double x_ij = a.A[i] * b.qs[j] - b.A[i] * a.qs[j];
+                const double x_ji = a.A[j] * b.qs[i] - b.A[j] * a.qs[i];
+                drot[i][j] = 0.25 * (x_ij + x_ji);
+              }
+          SymmetricTensor<2, 3> dsigma = response.tangent * deps;
           if (response.sensitivity_is_identity)
-            dsigma_sym += drot;
+            dsigma += drot;
           else
-            dsigma_sym += response.rotated_stress_sensitivity * drot;
+            dsigma += response.rotated_stress_sensitivity * drot;
 
           // tr(δF F⁻¹) = (F⁻¹)_Lk;  σF⁻ᵀ δFᵀ F⁻ᵀ = (σF⁻ᵀ e_L) ⊗ (F⁻ᵀ)_k·
-          const double       trace_dF_Finv = kin.F_inv[L][k];
-          const Tensor<2, 3> dsigma_FiT    = Tensor<2, 3>(dsigma_sym) * F_inv_T;
+          const double trace_dF_Finv = kin.F_inv[L][k];
           for (unsigned int i = 0; i < dim; ++i)
             for (unsigned int J = 0; J < dim; ++J)
-              A[i][J][k][L] = kin.J * (trace_dF_Finv * sigma_FiT[i][J] + dsigma_FiT[i][J] -
-                                       sigma_FiT[i][L] * F_inv_T[k][J]);
+              {
+                double ds_FiT = 0;
+                for (unsigned int m = 0; m < 3; ++m)
+                  ds_FiT += dsigma[i][m] * F_inv_T[m][J];
+                A[i][J][k][L] = kin.J * (trace_dF_Finv * sigma_FiT[i][J] + ds_FiT -
+                                         sigma_FiT[i][L] * F_inv_T[k][J]);
+              }
         }
     return A;
   }

@@ -172,6 +172,7 @@ namespace anvil
     Vector<double>     cell_internal(n_dofs), cell_external(n_dofs), cell_rhs(n_dofs);
     std::vector<types::global_dof_index> dof_indices(n_dofs);
     std::vector<Tensor<2, dim>>          grad_u(n_q), grad_u_old(n_q);
+    std::vector<double>                  local_u(n_dofs), local_u_old(n_dofs);
     std::vector<Tensor<2, dim>>          face_grad_u(face_quadrature.size());
     std::vector<unsigned int>            component(n_dofs);
     for (unsigned int i = 0; i < n_dofs; ++i)
@@ -197,8 +198,28 @@ namespace anvil
           continue;
         ++n_cells;
         fe_values.reinit(cell);
-        fe_values[displacements].get_function_gradients(solution, grad_u);
-        fe_values[displacements].get_function_gradients(old_solution, grad_u_old);
+        // ∇u and ∇uₙ from the local dof values (cheaper than
+        // get_function_gradients, which allocates per call).
+        cell->get_dof_indices(dof_indices);
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          {
+            local_u[i]     = solution(dof_indices[i]);
+            local_u_old[i] = old_solution(dof_indices[i]);
+          }
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            grad_u[q]     = 0;
+            grad_u_old[q] = 0;
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              {
+                const Tensor<1, dim> g = fe_values.shape_grad_component(i, q, component[i]);
+                for (unsigned int d = 0; d < dim; ++d)
+                  {
+                    grad_u[q][component[i]][d] += local_u[i] * g[d];
+                    grad_u_old[q][component[i]][d] += local_u_old[i] * g[d];
+                  }
+              }
+          }
         if (with_matrix)
           cell_matrix = 0;
         cell_internal = 0;
@@ -316,7 +337,6 @@ namespace anvil
                       }
                   }
 
-        cell->get_dof_indices(dof_indices);
         for (unsigned int i = 0; i < n_dofs; ++i)
           cell_rhs(i) = cell_external(i) - cell_internal(i);
         if (with_matrix)
