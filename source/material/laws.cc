@@ -156,6 +156,10 @@ namespace anvil
     exponent = prm.get_double("Exponent");
     const std::string table = prm.get("Table");
     prm.leave_subsection();
+    kind = model == "linear"       ? Kind::linear :
+           model == "johnson-cook" ? Kind::johnson_cook :
+           model == "table"        ? Kind::table :
+                                     Kind::none;
     const std::string p = path + "/Thermal softening";
     if (model == "johnson-cook" && !(T_melt > T_ref))
       scene.fail(p + "/Melting temperature", "must exceed the Reference temperature");
@@ -167,32 +171,40 @@ namespace anvil
 
   double ThermalSoftening::factor(const double T) const
   {
-    if (model == "linear")
-      return 1 - omega * (T - T_ref);
-    if (model == "johnson-cook")
+    switch (kind)
       {
-        const double s = std::clamp((T - T_ref) / (T_melt - T_ref), 0., 1.);
-        return 1 - std::pow(s, exponent);
+        case Kind::linear:
+          return 1 - omega * (T - T_ref);
+        case Kind::johnson_cook:
+          {
+            const double s = std::clamp((T - T_ref) / (T_melt - T_ref), 0., 1.);
+            return 1 - std::pow(s, exponent);
+          }
+        case Kind::table:
+          return interpolate(T_table, f_table, T, false).first;
+        default:
+          return 1;
       }
-    if (model == "table")
-      return interpolate(T_table, f_table, T, false).first;
-    return 1;
   }
 
   double ThermalSoftening::derivative(const double T) const
   {
-    if (model == "linear")
-      return -omega;
-    if (model == "johnson-cook")
+    switch (kind)
       {
-        const double s = (T - T_ref) / (T_melt - T_ref);
-        if (s <= 0 || s >= 1)
+        case Kind::linear:
+          return -omega;
+        case Kind::johnson_cook:
+          {
+            const double s = (T - T_ref) / (T_melt - T_ref);
+            if (s <= 0 || s >= 1)
+              return 0;
+            return -exponent * std::pow(s, exponent - 1) / (T_melt - T_ref);
+          }
+        case Kind::table:
+          return interpolate(T_table, f_table, T, false).second;
+        default:
           return 0;
-        return -exponent * std::pow(s, exponent - 1) / (T_melt - T_ref);
       }
-    if (model == "table")
-      return interpolate(T_table, f_table, T, false).second;
-    return 0;
   }
 
   // ---------------------------------------------------------------- HardeningLaw
@@ -236,6 +248,11 @@ namespace anvil
     const std::string p = path + "/Hardening";
     prm.enter_subsection("Hardening");
     model     = prm.get("Model");
+    kind      = model == "linear"     ? Kind::linear :
+                model == "swift"      ? Kind::swift :
+                model == "voce"       ? Kind::voce :
+                model == "saturation" ? Kind::saturation :
+                                        Kind::table;
     sigma0    = prm.get_double("Initial yield stress");
     h         = prm.get_double("Hardening modulus");
     sigma_inf = prm.get_double("Saturation stress");
@@ -275,23 +292,23 @@ namespace anvil
     auto f  = [&](bool soft) { return soft ? theta : 1.; };
     auto df = [&](bool soft) { return soft ? dtheta : 0.; };
     Value v;
-    if (model == "linear")
+    if (kind == Kind::linear)
       {
         v.stress                 = f(soft_sigma0) * sigma0 + f(soft_h) * h * eps;
         v.slope                  = f(soft_h) * h;
         v.temperature_derivative = df(soft_sigma0) * sigma0 + df(soft_h) * h * eps;
       }
-    else if (model == "swift")
+    else if (kind == Kind::swift)
       {
         const double base        = std::pow(eps0 + eps, n);
         v.stress                 = f(soft_K) * K * base;
         v.slope                  = f(soft_K) * K * n * base / (eps0 + eps);
         v.temperature_derivative = df(soft_K) * K * base;
       }
-    else if (model == "voce" || model == "saturation")
+    else if (kind == Kind::voce || kind == Kind::saturation)
       {
         const double e = 1 - std::exp(-delta * eps);
-        const double lin = model == "saturation" ? h : 0;
+        const double lin = kind == Kind::saturation ? h : 0;
         v.stress = f(soft_sigma0) * sigma0 + f(soft_h) * lin * eps +
                    (f(soft_sigma_inf) * sigma_inf - f(soft_sigma0) * sigma0) * e;
         v.slope = f(soft_h) * lin +

@@ -33,24 +33,20 @@ namespace anvil
     return kin.J * Tensor<2, 3>(cauchy) * transpose(kin.F_inv);
   }
 
-  template <int dim>
-  Tensor<4, dim> first_piola_tangent(const IncrementalKinematics &kin,
-                                     const SymmetricTensor<2, 3> &stress_old,
-                                     const MaterialResponse      &response)
+  void cauchy_tangent(const IncrementalKinematics &kin,
+                      const SymmetricTensor<2, 3> &stress_old,
+                      const MaterialResponse      &response,
+                      const TangentDirections     &directions,
+                      SymmetricTensor<2, 3>       *dsigma)
   {
     const Tensor<2, 3> I          = unit_symmetric_tensor<3>();
-    const Tensor<2, 3> sigma      = response.stress;
-    const Tensor<2, 3> F_inv_T    = transpose(kin.F_inv);
-    const Tensor<2, 3> sigma_FiT  = sigma * F_inv_T;
     const Tensor<2, 3> I_minus    = I - 0.5 * kin.dL;
     const Tensor<2, 3> one_plus_R = I + kin.rotation_increment;
     const Tensor<2, 3> sn_RT      = Tensor<2, 3>(stress_old) * transpose(kin.rotation_increment);
-
-    const Tensor<2, 3> I_plus_Rh = I + kin.half_rotation;
-    const Tensor<2, 3> Rh_T      = transpose(kin.half_rotation);
-    const Tensor<2, 3> mid_Rh_T  = Tensor<2, 3>(kin.mid_strain) * Rh_T;
-    const Tensor<2, 3> PM        = I_plus_Rh * mid_Rh_T;
-    const Tensor<2, 3> QS        = one_plus_R * sn_RT;
+    const Tensor<2, 3> I_plus_Rh  = I + kin.half_rotation;
+    const Tensor<2, 3> mid_Rh_T   = Tensor<2, 3>(kin.mid_strain) * transpose(kin.half_rotation);
+    const Tensor<2, 3> PM         = I_plus_Rh * mid_Rh_T;
+    const Tensor<2, 3> QS         = one_plus_R * sn_RT;
 
     // δF = e_k ⊗ e_L gives δΔL = a ⊗ b with a = (I − ½ΔL) e_k, b = F½⁻ᵀ e_L, so
     // every product below is a sum of outer products of vectors computed once:
@@ -61,57 +57,88 @@ namespace anvil
     {
       Tensor<1, 3> Ah, pm, Rh, A, qs;
     };
+    std::array<Images, 3> a_img, b_img;
+    std::array<bool, 3>   have_a{{false, false, false}}, have_b{{false, false, false}};
     auto images = [&](const Tensor<1, 3> &v) {
       return Images{kin.A_half_inv * v, transpose(PM) * v, kin.half_rotation * v, kin.A_inv * v,
                     transpose(QS) * v};
     };
-    std::array<Images, dim> a_img, b_img;
-    for (unsigned int k = 0; k < dim; ++k)
+    for (unsigned int d = 0; d < directions.n; ++d)
       {
-        Tensor<1, 3> a, b;
-        for (unsigned int i = 0; i < 3; ++i)
+        const unsigned int k = directions.kl[d].first, L = directions.kl[d].second;
+        if (!have_a[k])
           {
-            a[i] = I_minus[i][k];
-            b[i] = kin.F_half_inv[k][i];
+            Tensor<1, 3> a;
+            for (unsigned int i = 0; i < 3; ++i)
+              a[i] = I_minus[i][k];
+            a_img[k]  = images(a);
+            have_a[k] = true;
           }
-        a_img[k] = images(a);
-        b_img[k] = images(b);
+        if (!have_b[L])
+          {
+            Tensor<1, 3> b;
+            for (unsigned int i = 0; i < 3; ++i)
+              b[i] = kin.F_half_inv[L][i];
+            b_img[L]  = images(b);
+            have_b[L] = true;
+          }
+        const Images         &a = a_img[k], &b = b_img[L];
+        SymmetricTensor<2, 3> deps, drot;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = i; j < 3; ++j)
+            {
+              const double y_ij = a.Ah[i] * b.pm[j] - b.Ah[i] * a.pm[j];
+              const double y_ji = a.Ah[j] * b.pm[i] - b.Ah[j] * a.pm[i];
+              deps[i][j] = 0.5 * (a.Rh[i] * b.Rh[j] + b.Rh[i] * a.Rh[j]) + 0.125 * (y_ij + y_ji);
+              const double x_ij = a.A[i] * b.qs[j] - b.A[i] * a.qs[j];
+              const double x_ji = a.A[j] * b.qs[i] - b.A[j] * a.qs[i];
+              drot[i][j] = 0.25 * (x_ij + x_ji);
+            }
+        dsigma[d] = response.tangent * deps;
+        if (response.sensitivity_is_identity)
+          dsigma[d] += drot;
+        else
+          dsigma[d] += response.rotated_stress_sensitivity * drot;
       }
+  }
 
-    Tensor<4, dim> A;
+  TangentDirections TangentDirections::in_plane(const unsigned int dim, const bool hoop)
+  {
+    TangentDirections t;
     for (unsigned int k = 0; k < dim; ++k)
       for (unsigned int L = 0; L < dim; ++L)
-        {
-          const Images &a = a_img[k], &b = b_img[L];
-          SymmetricTensor<2, 3> deps, drot;
-          for (unsigned int i = 0; i < 3; ++i)
-            for (unsigned int j = i; j < 3; ++j)
-              {
-                const double y_ij = a.Ah[i] * b.pm[j] - b.Ah[i] * a.pm[j];
-                const double y_ji = a.Ah[j] * b.pm[i] - b.Ah[j] * a.pm[i];
-                deps[i][j] = 0.5 * (a.Rh[i] * b.Rh[j] + b.Rh[i] * a.Rh[j]) + 0.125 * (y_ij + y_ji);
-                const double x_ij = a.A[i] * b.qs[j] - b.A[i] * a.qs[j];
-                const double x_ji = a.A[j] * b.qs[i] - b.A[j] * a.qs[i];
-                drot[i][j] = 0.25 * (x_ij + x_ji);
-              }
-          SymmetricTensor<2, 3> dsigma = response.tangent * deps;
-          if (response.sensitivity_is_identity)
-            dsigma += drot;
-          else
-            dsigma += response.rotated_stress_sensitivity * drot;
+        t.kl[t.n++] = {k, L};
+    if (hoop)
+      t.kl[t.n++] = {2, 2};
+    return t;
+  }
 
-          // tr(δF F⁻¹) = (F⁻¹)_Lk;  σF⁻ᵀ δFᵀ F⁻ᵀ = (σF⁻ᵀ e_L) ⊗ (F⁻ᵀ)_k·
-          const double trace_dF_Finv = kin.F_inv[L][k];
-          for (unsigned int i = 0; i < dim; ++i)
-            for (unsigned int J = 0; J < dim; ++J)
-              {
-                double ds_FiT = 0;
-                for (unsigned int m = 0; m < 3; ++m)
-                  ds_FiT += dsigma[i][m] * F_inv_T[m][J];
-                A[i][J][k][L] = kin.J * (trace_dF_Finv * sigma_FiT[i][J] + ds_FiT -
-                                         sigma_FiT[i][L] * F_inv_T[k][J]);
-              }
-        }
+  template <int dim>
+  Tensor<4, dim> first_piola_tangent(const IncrementalKinematics &kin,
+                                     const SymmetricTensor<2, 3> &stress_old,
+                                     const MaterialResponse      &response)
+  {
+    const TangentDirections directions = TangentDirections::in_plane(dim, false);
+    std::array<SymmetricTensor<2, 3>, 9> dsigma;
+    cauchy_tangent(kin, stress_old, response, directions, dsigma.data());
+
+    const Tensor<2, 3> F_inv_T   = transpose(kin.F_inv);
+    const Tensor<2, 3> sigma_FiT = Tensor<2, 3>(response.stress) * F_inv_T;
+    Tensor<4, dim>     A;
+    for (unsigned int d = 0; d < directions.n; ++d)
+      {
+        const unsigned int k = directions.kl[d].first, L = directions.kl[d].second;
+        // δP = J [tr(δF F⁻¹) σF⁻ᵀ + δσ F⁻ᵀ − σF⁻ᵀ δFᵀ F⁻ᵀ], tr(δF F⁻¹) = (F⁻¹)_Lk.
+        for (unsigned int i = 0; i < dim; ++i)
+          for (unsigned int J = 0; J < dim; ++J)
+            {
+              double ds_FiT = 0;
+              for (unsigned int m = 0; m < 3; ++m)
+                ds_FiT += dsigma[d][i][m] * F_inv_T[m][J];
+              A[i][J][k][L] = kin.J * (kin.F_inv[L][k] * sigma_FiT[i][J] + ds_FiT -
+                                       sigma_FiT[i][L] * F_inv_T[k][J]);
+            }
+      }
     return A;
   }
 

@@ -30,6 +30,15 @@ namespace anvil
     prm.enter_subsection("Mechanics");
     prm.declare_entry("Polynomial degree", "1", Patterns::Integer(1, 2),
                       "Degree of the displacement elements: 1 (Q1) or 2 (Q2).");
+    prm.declare_entry("Element", "F-bar", Patterns::Selection("F-bar|standard"),
+                      "F-bar: the dilatation of each Q1 cell is its centre's (de Souza Neto et al. "
+                      "1996), so isochoric plastic flow does not lock (seed sec. 3.1: constant "
+                      "pressure elements); standard: plain displacement elements (Q1 locks in "
+                      "plastic flow; Q2 with Polynomial degree = 2).");
+    prm.declare_entry("Two-dimensional model", "plane strain",
+                      Patterns::Selection("plane strain|axisymmetric"),
+                      "For Dimension = 2: plane strain, or axisymmetric about the y axis with x the "
+                      "radius (x >= 0; hoop strain u_r/r; forces are per full ring, 2 pi r).");
     prm.declare_entry("Temperature", "293", Patterns::Double(0),
                       "Uniform temperature in K of a scene without a temperature field: the "
                       "material laws are evaluated at it.");
@@ -42,6 +51,10 @@ namespace anvil
                       "Residual norm in N below which a step is converged whatever the scale.");
     prm.declare_entry("Displacement tolerance", "1e-8", Patterns::Double(0),
                       "Relative increment tolerance: |δu| <= tol * |Δu of the step| (dimensionless).");
+    prm.declare_entry("Check tangent", "false", Patterns::Bool(),
+                      "Compare the assembled tangent with central finite differences of the "
+                      "residual at every Newton iteration and print the relative error (slow; "
+                      "for debugging new material laws).");
     prm.declare_entry("Line search", "true", Patterns::Bool(),
                       "Backtrack (halve the Newton update, up to 5 times) while the residual grows.");
     prm.leave_subsection();
@@ -60,10 +73,12 @@ namespace anvil
   }
 
   template <int dim>
-  void MechanicalProblem<dim>::Parameters::parse_parameters(ParameterHandler &prm, const Scene &)
+  void MechanicalProblem<dim>::Parameters::parse_parameters(ParameterHandler &prm, const Scene &scene)
   {
     prm.enter_subsection("Mechanics");
     polynomial_degree = prm.get_integer("Polynomial degree");
+    f_bar             = prm.get("Element") == "F-bar";
+    axisymmetric      = dim == 2 && prm.get("Two-dimensional model") == "axisymmetric";
     temperature       = prm.get_double("Temperature");
     prm.enter_subsection("Newton");
     max_iterations              = prm.get_integer("Maximum iterations");
@@ -71,6 +86,7 @@ namespace anvil
     absolute_residual_tolerance = prm.get_double("Absolute residual tolerance");
     displacement_tolerance      = prm.get_double("Displacement tolerance");
     line_search                 = prm.get_bool("Line search");
+    check_tangent               = prm.get_bool("Check tangent");
     prm.leave_subsection();
     prm.enter_subsection("Linear solver");
     linear_solver         = prm.get("Type");
@@ -79,6 +95,11 @@ namespace anvil
     direct_solver_limit   = prm.get_integer("Direct solver limit");
     prm.leave_subsection();
     prm.leave_subsection();
+    if (f_bar && polynomial_degree != 1)
+      scene.fail("Mechanics/Element", "is F-bar, which is a Q1 element: use Element = standard "
+                                      "with Polynomial degree = 2");
+    if (dim == 3 && prm.get("Dimension") == "3")
+      axisymmetric = false;
   }
 
   template <int dim>
@@ -94,6 +115,8 @@ namespace anvil
     , boundary_conditions(boundary_conditions)
     , materials(materials)
     , timer(timer)
+    , axisymmetric(parameters.axisymmetric)
+    , f_bar(parameters.f_bar)
     , fe(FE_Q<dim>(parameters.polynomial_degree), dim)
     , mapping(1)
     , dof_handler(triangulation)
@@ -113,6 +136,7 @@ namespace anvil
     constraints.reinit(locally_relevant_dofs);
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
     boundary_conditions.make_homogeneous_constraints(dof_handler, constraints);
+    make_axis_constraints(constraints);
     constraints.close();
 
     DynamicSparsityPattern dsp(locally_relevant_dofs);
@@ -146,220 +170,6 @@ namespace anvil
           for (unsigned int q = 0; q < n_q; ++q)
             points[cell->active_cell_index() * n_q + q] = m->second->create_point();
         }
-  }
-
-  template <int dim>
-  bool MechanicalProblem<dim>::assemble(const bool with_matrix, const double time)
-  {
-    TimerOutput::Scope t(timer, with_matrix ? "Mechanics: assembly" : "Mechanics: residual");
-    const auto start = std::chrono::steady_clock::now();
-
-    if (with_matrix)
-      system_matrix = 0;
-    system_rhs      = 0;
-    internal_force  = 0;
-    external_force  = 0;
-
-    FEValues<dim> fe_values(mapping, fe, quadrature,
-                            update_gradients | update_JxW_values);
-    FEFaceValues<dim> fe_face_values(mapping, fe, face_quadrature,
-                                     update_values | update_gradients | update_normal_vectors |
-                                       update_JxW_values | update_quadrature_points);
-
-    const unsigned int n_dofs = fe.n_dofs_per_cell();
-    const unsigned int n_q    = quadrature.size();
-    FullMatrix<double> cell_matrix(n_dofs, n_dofs);
-    Vector<double>     cell_internal(n_dofs), cell_external(n_dofs), cell_rhs(n_dofs);
-    std::vector<types::global_dof_index> dof_indices(n_dofs);
-    std::vector<Tensor<2, dim>>          grad_u(n_q), grad_u_old(n_q);
-    std::vector<double>                  local_u(n_dofs), local_u_old(n_dofs);
-    std::vector<Tensor<2, dim>>          face_grad_u(face_quadrature.size());
-    std::vector<unsigned int>            component(n_dofs);
-    for (unsigned int i = 0; i < n_dofs; ++i)
-      component[i] = fe.system_to_component_index(i).first;
-    std::vector<Tensor<1, dim>>              grad_N(n_dofs);
-    std::vector<std::array<Tensor<1, dim>, dim>> A_grad_N(n_dofs);
-
-    const FEValuesExtractors::Vector displacements(0);
-    IncrementalKinematics            kin;
-    MaterialIncrement                increment;
-    MaterialResponse                 response;
-    const MaterialRequest request = with_matrix ? (request_stress | request_tangent) : request_stress;
-
-    bool   inverted          = false;
-    material_failure.clear();
-    double min_J             = 1;
-    unsigned int n_cells     = 0;
-    step_internal_work       = 0;
-
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      {
-        if (!cell->is_locally_owned())
-          continue;
-        ++n_cells;
-        fe_values.reinit(cell);
-        // ∇u and ∇uₙ from the local dof values (cheaper than
-        // get_function_gradients, which allocates per call).
-        cell->get_dof_indices(dof_indices);
-        for (unsigned int i = 0; i < n_dofs; ++i)
-          {
-            local_u[i]     = solution(dof_indices[i]);
-            local_u_old[i] = old_solution(dof_indices[i]);
-          }
-        for (unsigned int q = 0; q < n_q; ++q)
-          {
-            grad_u[q]     = 0;
-            grad_u_old[q] = 0;
-            for (unsigned int i = 0; i < n_dofs; ++i)
-              {
-                const Tensor<1, dim> g = fe_values.shape_grad_component(i, q, component[i]);
-                for (unsigned int d = 0; d < dim; ++d)
-                  {
-                    grad_u[q][component[i]][d] += local_u[i] * g[d];
-                    grad_u_old[q][component[i]][d] += local_u_old[i] * g[d];
-                  }
-              }
-          }
-        if (with_matrix)
-          cell_matrix = 0;
-        cell_internal = 0;
-        cell_external = 0;
-
-        for (unsigned int q = 0; q < n_q; ++q)
-          {
-            const Tensor<2, 3> F     = embed<dim>(unit_symmetric_tensor<dim>() + grad_u[q], 1.);
-            const Tensor<2, 3> F_old = embed<dim>(unit_symmetric_tensor<dim>() + grad_u_old[q], 1.);
-            const double       J     = determinant(F);
-            min_J                    = std::min(min_J, J);
-            if (!(J > 0) || !(determinant(0.5 * (F + F_old)) > 0))
-              {
-                inverted = true;
-                break;
-              }
-            kin.reinit(F, F_old);
-            increment.strain_increment      = kin.strain_increment;
-            increment.rotation_increment    = kin.rotation_increment;
-            increment.temperature           = parameters.temperature;
-            increment.temperature_increment = 0;
-            increment.time_step             = current_time_step;
-            MaterialPoint &point = *points[cell->active_cell_index() * n_q + q];
-            try
-              {
-                point.update(increment, request, response);
-              }
-            catch (const MaterialPointError &e)
-              {
-                // Say where; the step is cut back (all ranks learn it below).
-                std::ostringstream where;
-                where << e.what() << " (material point " << q << " of the cell at "
-                      << cell->center() << ", body id " << cell->material_id() << ")";
-                material_failure = where.str();
-                inverted         = true;
-                break;
-              }
-
-            const Tensor<2, 3> P   = first_piola_stress(kin, response.stress);
-            const double       JxW = fe_values.JxW(q);
-            // Stress power over the step at the mid-point volume (energy audit).
-            step_internal_work += 0.5 * ((response.stress + point.committed_stress()) *
-                                         kin.strain_increment) *
-                                  determinant(0.5 * (F + F_old)) * JxW;
-
-            for (unsigned int i = 0; i < n_dofs; ++i)
-              {
-                grad_N[i] = fe_values.shape_grad_component(i, q, component[i]);
-                double f  = 0;
-                for (unsigned int J_ = 0; J_ < dim; ++J_)
-                  f += P[component[i]][J_] * grad_N[i][J_];
-                cell_internal(i) += f * JxW;
-              }
-
-            if (with_matrix)
-              {
-                const Tensor<4, dim> A =
-                  first_piola_tangent<dim>(kin, point.committed_stress(), response);
-                // (A : ∇N_j)[i][J] for the component of j, then contract with ∇N_i.
-                for (unsigned int j = 0; j < n_dofs; ++j)
-                  for (unsigned int i_ = 0; i_ < dim; ++i_)
-                    for (unsigned int J_ = 0; J_ < dim; ++J_)
-                      {
-                        double s = 0;
-                        for (unsigned int L = 0; L < dim; ++L)
-                          s += A[i_][J_][component[j]][L] * grad_N[j][L];
-                        A_grad_N[j][i_][J_] = s * JxW;
-                      }
-                for (unsigned int i = 0; i < n_dofs; ++i)
-                  for (unsigned int j = 0; j < n_dofs; ++j)
-                    cell_matrix(i, j) += grad_N[i] * A_grad_N[j][component[i]];
-              }
-          }
-        if (inverted)
-          break;
-
-        // Follower pressure: f_ext = −∫ p n da N, n da = J F⁻ᵀ N dA (Nanson).
-        if (boundary_conditions.has_pressure())
-          for (const auto &face : cell->face_iterators())
-            if (face->at_boundary())
-              for (const auto &load : boundary_conditions.pressures())
-                if (face->boundary_id() == load.boundary)
-                  {
-                    fe_face_values.reinit(cell, face);
-                    fe_face_values[displacements].get_function_gradients(solution, face_grad_u);
-                    load.value->set_time(time);
-                    for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                      {
-                        const double p = load.value->value(fe_face_values.quadrature_point(q));
-                        const Tensor<2, dim> F = unit_symmetric_tensor<dim>() + face_grad_u[q];
-                        const double         J = determinant(F);
-                        const Tensor<2, dim> F_inv   = invert(F);
-                        const Tensor<1, dim> FiT_N   = transpose(F_inv) * fe_face_values.normal_vector(q);
-                        const double         JxW     = fe_face_values.JxW(q);
-                        for (unsigned int i = 0; i < n_dofs; ++i)
-                          {
-                            const unsigned int ci = component[i];
-                            const double       Ni = fe_face_values.shape_value(i, q);
-                            cell_external(i) -= p * J * FiT_N[ci] * Ni * JxW;
-                            if (with_matrix)
-                              for (unsigned int j = 0; j < n_dofs; ++j)
-                                {
-                                  const unsigned int   cj = component[j];
-                                  const Tensor<1, dim> g =
-                                    fe_face_values.shape_grad_component(j, q, cj);
-                                  double tr = 0; // tr(F⁻¹ δF) with δF = e_cj ⊗ g
-                                  for (unsigned int m = 0; m < dim; ++m)
-                                    tr += F_inv[m][cj] * g[m];
-                                  const Tensor<1, dim> FiT_g = transpose(F_inv) * g;
-                                  const double d_nda = J * (tr * FiT_N[ci] - FiT_g[ci] * FiT_N[cj]);
-                                  // K = ∂f_int/∂u − ∂f_ext/∂u
-                                  cell_matrix(i, j) += p * d_nda * Ni * JxW;
-                                }
-                          }
-                      }
-                  }
-
-        for (unsigned int i = 0; i < n_dofs; ++i)
-          cell_rhs(i) = cell_external(i) - cell_internal(i);
-        if (with_matrix)
-          active_constraints->distribute_local_to_global(cell_matrix, cell_rhs, dof_indices,
-                                                         system_matrix, system_rhs);
-        else
-          active_constraints->distribute_local_to_global(cell_rhs, dof_indices, system_rhs);
-        internal_force.add(dof_indices, cell_internal);
-        external_force.add(dof_indices, cell_external);
-      }
-
-    if (with_matrix)
-      system_matrix.compress(VectorOperation::add);
-    system_rhs.compress(VectorOperation::add);
-    internal_force.compress(VectorOperation::add);
-    external_force.compress(VectorOperation::add);
-    step_internal_work = Utilities::MPI::sum(step_internal_work, mpi_communicator);
-
-    const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (with_matrix && seconds > 0)
-      assembly_rate = n_cells / seconds;
-    return Utilities::MPI::max(inverted ? 1 : 0, mpi_communicator) == 0;
   }
 
   template <int dim>
@@ -421,11 +231,64 @@ namespace anvil
   }
 
   template <int dim>
+  void MechanicalProblem<dim>::make_axis_constraints(AffineConstraints<double> &c) const
+  {
+    // Axisymmetric: nodes on the axis (x = 0) do not move radially.
+    if (!axisymmetric)
+      return;
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (!cell->is_artificial())
+        {
+          cell->get_dof_indices(dofs);
+          for (const unsigned int v : cell->vertex_indices())
+            if (std::abs(cell->vertex(v)[0]) < 1e-12 * cell->diameter())
+              for (unsigned int i = 0; i < dofs.size(); ++i)
+                if (fe.system_to_component_index(i).first == 0 && fe.has_support_points() &&
+                    fe.get_unit_support_points()[i].distance(
+                      GeometryInfo<dim>::unit_cell_vertex(v)) < 1e-12 &&
+                    !c.is_constrained(dofs[i]) && locally_relevant_dofs.is_element(dofs[i]))
+                  c.add_line(dofs[i]);
+        }
+  }
+
+  template <int dim>
+  double MechanicalProblem<dim>::tangent_error()
+  {
+    // Random direction on the free dofs; K is assembled at the current u.
+    TrilinosWrappers::MPI::Vector du(locally_owned_dofs, mpi_communicator), Kdu(du), r_plus(du);
+    for (const auto i : locally_owned_dofs)
+      du(i) = std::sin(1.0 + 7.3 * i);
+    du.compress(VectorOperation::insert);
+    constraints.set_zero(du);
+    assemble(true, current_time);
+    system_matrix.vmult(Kdu, du);
+    constraints.set_zero(Kdu);
+    const TrilinosWrappers::MPI::Vector u0 = owned_solution;
+    const double h = 1e-7 * std::max(1.0, u0.l2_norm()) / std::max(du.l2_norm(), 1e-300);
+    owned_solution.add(h, du);
+    solution = owned_solution;
+    assemble(false, current_time);
+    r_plus = system_rhs; // −R(u + h du)
+    owned_solution = u0;
+    owned_solution.add(-h, du);
+    solution = owned_solution;
+    assemble(false, current_time);
+    r_plus -= system_rhs; // −R(u+) + R(u−)
+    r_plus /= -2 * h;     // (R(u+) − R(u−)) / 2h ≈ K du
+    owned_solution = u0;
+    solution       = owned_solution;
+    r_plus -= Kdu;
+    return r_plus.l2_norm() / std::max(Kdu.l2_norm(), 1e-300);
+  }
+
+  template <int dim>
   typename MechanicalProblem<dim>::StepResult
   MechanicalProblem<dim>::solve_step(const double time_old, const double time_new)
   {
     StepResult result;
     current_time_step = time_new - time_old;
+    current_time      = time_new;
 
     // Predictor: the first Newton iteration starts from the committed
     // configuration and imposes the jump of the prescribed displacements as
@@ -437,6 +300,7 @@ namespace anvil
     predictor_constraints.clear();
     predictor_constraints.reinit(locally_relevant_dofs);
     DoFTools::make_hanging_node_constraints(dof_handler, predictor_constraints);
+    make_axis_constraints(predictor_constraints);
     {
       std::map<types::global_dof_index, double> values;
       boundary_conditions.interpolate(dof_handler, time_new, values);
@@ -472,6 +336,13 @@ namespace anvil
             return result;
           }
         result.residuals.push_back(r);
+        if (parameters.check_tangent)
+          {
+            const double e = tangent_error();
+            if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+              std::cout << "    tangent check: |K du - FD| / |K du| = " << e << std::endl;
+            assemble(true, time_new); // restore K and R at u
+          }
 
         const double scale = std::max(internal_force.l2_norm(), external_force.l2_norm());
         TrilinosWrappers::MPI::Vector step_u(owned_solution);
@@ -620,15 +491,18 @@ namespace anvil
     f.names.insert(f.names.end(), {"von_mises", "pressure", "J", "equivalent_plastic_strain", "body"});
     f.values.assign(f.names.size(), Vector<double>(triangulation.n_active_cells()));
 
-    FEValues<dim> fe_values(mapping, fe, quadrature, update_gradients);
+    FEValues<dim> fe_values(mapping, fe, quadrature,
+                            update_gradients | update_values | update_quadrature_points);
     const unsigned int n_q = quadrature.size();
     std::vector<Tensor<2, dim>> grad_u(n_q);
+    std::vector<Tensor<1, dim>> u_values(n_q);
     const FEValuesExtractors::Vector displacements(0);
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
           fe_values[displacements].get_function_gradients(solution, grad_u);
+          fe_values[displacements].get_function_values(solution, u_values);
           SymmetricTensor<2, 3> s;
           double J = 0, eqps = 0;
           for (unsigned int q = 0; q < n_q; ++q)
@@ -636,7 +510,9 @@ namespace anvil
               const auto &p = *points[cell->active_cell_index() * n_q + q];
               s += p.stress() / n_q;
               eqps += p.equivalent_plastic_strain() / n_q;
-              J += determinant(unit_symmetric_tensor<dim>() + grad_u[q]) / n_q;
+              const double R  = axisymmetric ? fe_values.quadrature_point(q)[0] : 1.;
+              const double ur = axisymmetric ? u_values[q][0] : 0.;
+              J += determinant(deformation_gradient(grad_u[q], ur, R)) / n_q;
             }
           const unsigned int c = cell->active_cell_index();
           unsigned int       k = 0;

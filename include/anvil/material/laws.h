@@ -67,7 +67,16 @@ namespace anvil
     double reference_temperature() const { return T_ref; }
 
   private:
-    std::string         model = "none";
+    std::string model = "none";
+    /// `model` as an enum, set at parse time: factor() and derivative() run
+    /// several times per material point update.
+    enum class Kind
+    {
+      none,
+      linear,
+      johnson_cook,
+      table
+    } kind = Kind::none;
     double              omega = 0, T_ref = 293, T_melt = 1800, exponent = 1;
     std::vector<double> T_table, f_table;
   };
@@ -101,7 +110,16 @@ namespace anvil
     const ThermalSoftening &softening() const { return thermal; }
 
   private:
-    std::string         model = "linear";
+    std::string model = "linear";
+    /// `model` as an enum, set at parse time (evaluate() is on the hot path).
+    enum class Kind
+    {
+      linear,
+      swift,
+      voce,
+      saturation,
+      table
+    } kind = Kind::linear;
     double              sigma0 = 0, h = 0, sigma_inf = 0, delta = 0, K = 0, eps0 = 0, n = 1;
     bool                soft_sigma0 = true, soft_h = true, soft_sigma_inf = true, soft_K = true;
     std::vector<double> eps_table, sigma_table;

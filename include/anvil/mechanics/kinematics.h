@@ -5,6 +5,9 @@
 
 #include <anvil/material/material_point.h>
 
+#include <array>
+#include <utility>
+
 namespace anvil
 {
   /**
@@ -64,6 +67,27 @@ namespace anvil
   dealii::Tensor<4, dim> first_piola_tangent(const IncrementalKinematics          &kin,
                                              const dealii::SymmetricTensor<2, 3> &stress_old,
                                              const MaterialResponse              &response);
+
+  /// The unit directions δF = e_k ⊗ e_L a formulation needs, as (k, L).
+  struct TangentDirections
+  {
+    unsigned int                                      n = 0;
+    std::array<std::pair<unsigned int, unsigned int>, 9> kl;
+    /// dim x dim in-plane directions, plus (2, 2) for the hoop strain if @p hoop.
+    static TangentDirections in_plane(unsigned int dim, bool hoop);
+  };
+
+  /**
+   * δσ of the incremental update for each unit direction δF = e_k ⊗ e_L of
+   * @p directions (F_n fixed), written to @p dsigma[0..n): the Cauchy part of
+   * the linearisation above, from which the mechanics builds δP for its
+   * element formulation (standard, F-bar, axisymmetric).
+   */
+  void cauchy_tangent(const IncrementalKinematics          &kin,
+                      const dealii::SymmetricTensor<2, 3> &stress_old,
+                      const MaterialResponse              &response,
+                      const TangentDirections             &directions,
+                      dealii::SymmetricTensor<2, 3>       *dsigma);
 
   /// Embed a dim x dim tensor in 3x3 (identity in the missing directions for F).
   template <int dim>

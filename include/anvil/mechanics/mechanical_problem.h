@@ -42,6 +42,9 @@ namespace anvil
     struct Parameters
     {
       unsigned int polynomial_degree            = 1;
+      bool         f_bar                        = true;
+      bool         axisymmetric                 = false;
+      bool         check_tangent                = false;
       double       temperature                  = 293;
       unsigned int max_iterations               = 15;
       double       residual_tolerance           = 1e-8;
@@ -113,6 +116,10 @@ namespace anvil
                dealii::Tensor<1, dim>        &displacement,
                dealii::SymmetricTensor<2, 3> &stress) const;
 
+    /// |K δu − (R(u + hδu) − R(u − hδu))/2h| / |K δu| for a random δu at the
+    /// current iterate: the finite-difference check of the tangent.
+    double tangent_error();
+
     /// Cells per second of the last full (matrix + residual) assembly on this rank.
     double last_assembly_rate() const { return assembly_rate; }
     std::size_t memory_consumption() const;
@@ -123,7 +130,12 @@ namespace anvil
     bool assemble(bool with_matrix, double time);
     unsigned int solve_linear_system(dealii::TrilinosWrappers::MPI::Vector &du);
     double       residual_norm() const;
+    /// 3x3 F from the in-plane gradient (and the hoop stretch if axisymmetric).
+    dealii::Tensor<2, 3> deformation_gradient(const dealii::Tensor<2, dim> &grad_u,
+                                              double                        radial_displacement,
+                                              double                        radius) const;
     std::string  material_failure_message() const;
+    void make_axis_constraints(dealii::AffineConstraints<double> &constraints) const;
 
     MPI_Comm                                                 mpi_communicator;
     const dealii::parallel::distributed::Triangulation<dim> &triangulation;
@@ -132,6 +144,7 @@ namespace anvil
     std::map<dealii::types::material_id, std::shared_ptr<const MaterialModel>> materials;
     dealii::TimerOutput                                     &timer;
 
+    const bool                axisymmetric, f_bar;
     dealii::FESystem<dim>     fe;
     dealii::MappingQ<dim>     mapping;
     dealii::DoFHandler<dim>   dof_handler;
@@ -155,7 +168,7 @@ namespace anvil
     std::vector<std::unique_ptr<MaterialPoint>> points;
     double step_internal_work = 0, work_internal = 0, work_external = 0;
     double assembly_rate = 0;
-    double current_time_step = 1;
+    double current_time_step = 1, current_time = 0;
     std::string material_failure; // this rank's, from the last assembly
   };
 } // namespace anvil

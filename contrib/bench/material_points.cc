@@ -1,0 +1,177 @@
+// Material point throughput: updates per second on one core for each model,
+// in the elastic and in the plastic branch, 3D tensors, with the mechanics'
+// request (stress | tangent) and with stress only. Prints figures and the
+// targets beside them; asserts nothing (ctest label "bench", skipped by CI).
+//
+//   build/tests/bench_material_points            # ~1 s per measurement
+//   build/tests/bench_material_points --quick    # ~0.1 s per measurement
+//
+// Every update starts from the committed (virgin) state, as Newton's repeated
+// updates of one step do; the increments cycle through a small table so that
+// the inputs vary, and a checksum of the results is printed so that nothing
+// is optimised away.
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <anvil/core/scene.h>
+#include <anvil/material/material_point.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace dealii;
+using namespace anvil;
+
+namespace
+{
+  std::shared_ptr<const MaterialModel> make_model(const std::string &settings)
+  {
+    ParameterHandler prm;
+    MaterialFactory::declare_parameters(prm);
+    prm.parse_input_from_string("subsection Material\n" + settings + "end\n");
+    return MaterialFactory::create(prm, Scene(), "");
+  }
+
+  struct Model
+  {
+    std::string name, settings;
+    double      target_plastic; // updates/s per core, 0: none
+  };
+
+  /// Increments of size ~@p scale (a multiple of the yield strain), general 3D.
+  std::vector<MaterialIncrement> increments(const double scale)
+  {
+    std::vector<MaterialIncrement> list(64);
+    for (unsigned int k = 0; k < list.size(); ++k)
+      {
+        const double           f  = scale * (1 + 0.01 * k);
+        SymmetricTensor<2, 3> &de = list[k].strain_increment;
+        de[0][0] = 1.0 * f, de[1][1] = -0.4 * f, de[2][2] = -0.3 * f;
+        de[0][1] = 0.5 * f, de[1][2] = -0.2 * f, de[0][2] = 0.1 * f;
+        list[k].temperature           = 350 + k;
+        list[k].temperature_increment = 1;
+        list[k].time_step             = 1e-3;
+      }
+    return list;
+  }
+
+  double checksum = 0;
+
+  /// Updates per second over at least @p seconds (after a short warm-up).
+  double measure(MaterialPoint &point, const std::vector<MaterialIncrement> &list,
+                 const MaterialRequest request, const double seconds, unsigned long &count,
+                 bool &plastic)
+  {
+    using clock = std::chrono::steady_clock;
+    MaterialResponse response;
+    double           sum = 0;
+    auto             run = [&](const unsigned long n) {
+      for (unsigned long i = 0; i < n; ++i)
+        {
+          point.update(list[i & 63], request, response);
+          sum += response.stress[0][1] + response.equivalent_plastic_strain;
+          if (request & request_tangent)
+            sum += response.tangent[0][1][0][1];
+        }
+    };
+    // Calibrate: double the batch until it takes 5 % of the budget.
+    unsigned long batch = 1000;
+    for (;;)
+      {
+        const auto   t0 = clock::now();
+        run(batch);
+        const double t = std::chrono::duration<double>(clock::now() - t0).count();
+        if (t > 0.05 * seconds)
+          break;
+        batch *= 2;
+      }
+    plastic              = response.equivalent_plastic_strain > 0;
+    count                = 0;
+    const auto   t0      = clock::now();
+    double       elapsed = 0;
+    while (elapsed < seconds)
+      {
+        run(batch);
+        count += batch;
+        elapsed = std::chrono::duration<double>(clock::now() - t0).count();
+      }
+    checksum += sum;
+    return count / elapsed;
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  const bool   quick   = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+  const double seconds = quick ? 0.1 : 1.0;
+
+  const std::string elastic =
+    "subsection Elasticity\n set Young's modulus = 200000\n set Poisson's ratio = 0.3\n"
+    " set Thermal expansion = 1.2e-5\nend\n";
+  const std::string linear = "subsection Hardening\n set Model = linear\n"
+                             " set Initial yield stress = 250\n set Hardening modulus = 1000\nend\n";
+  const std::vector<Model> models = {
+    {"hypoelastic", "set Model = hypoelastic\n" + elastic, 0},
+    {"J2 linear", "set Model = J2\n" + elastic + linear, 10e6},
+    {"J2 saturation+softening",
+     "set Model = J2\n" + elastic +
+       "subsection Hardening\n set Model = saturation\n set Initial yield stress = 250\n"
+       " set Hardening modulus = 129\n set Saturation stress = 400\n set Saturation exponent = 16.9\n"
+       " subsection Thermal softening\n set Model = linear\n set Softening coefficient = 2e-3\n"
+       " end\nend\n",
+     0},
+    {"Perzyna m=1",
+     "set Model = Perzyna\n" + elastic + linear +
+       "subsection Viscosity\n subsection Eta\n set Value = 100\n end\n"
+       " subsection m\n set Value = 1\n end\nend\n",
+     2e6},
+    {"Perzyna m=10",
+     "set Model = Perzyna\n" + elastic + linear +
+       "subsection Viscosity\n subsection Eta\n set Value = 100\n end\n"
+       " subsection m\n set Value = 10\n end\nend\n",
+     2e6},
+  };
+  // Elastic: 0.1 x yield strain; plastic: 10 x (virgin state, one update).
+  const auto elastic_list = increments(0.1 * 250 / 200000);
+  const auto plastic_list = increments(10 * 250 / 200000.);
+
+  std::printf("Material point updates per second, one core, 3D, %.1f s per figure\n", seconds);
+  std::printf("%-26s %-8s %18s %18s  %s\n", "model", "branch", "stress|tangent /s",
+              "stress only /s", "target /s");
+  const auto start = std::chrono::steady_clock::now();
+  for (const auto &m : models)
+    {
+      const auto model = make_model(m.settings);
+      auto       point = model->create_point();
+      for (const bool plastic_branch : {false, true})
+        {
+          if (plastic_branch && model->name() == "hypoelastic")
+            continue;
+          const auto   &list = plastic_branch ? plastic_list : elastic_list;
+          unsigned long n1 = 0, n2 = 0;
+          bool          p1 = false, p2 = false;
+          const double  r1 =
+            measure(*point, list, request_stress | request_tangent, seconds, n1, p1);
+          const double r2 = measure(*point, list, request_stress, seconds, n2, p2);
+          char target[96] = "";
+          if (plastic_branch && m.target_plastic > 0)
+            std::snprintf(target, sizeof target, ">= %.0e: s|t %s, s %s", m.target_plastic,
+                          r1 >= m.target_plastic ? "met" : "MISSED",
+                          r2 >= m.target_plastic ? "met" : "MISSED");
+          std::printf("%-26s %-8s %18.3e %18.3e  %s\n", m.name.c_str(),
+                      p1 ? "plastic" : "elastic", r1, r2, target);
+          if (p1 != plastic_branch || p2 != plastic_branch)
+            std::printf("  warning: the increments did not give the %s branch\n",
+                        plastic_branch ? "plastic" : "elastic");
+        }
+    }
+  std::printf("targets: >= 1e7/s J2 linear (plastic), >= 2e6/s Perzyna (plastic), per core\n");
+  std::printf("checksum %.17g, %.1f s\n", checksum,
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return 0;
+}

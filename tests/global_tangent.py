@@ -1,0 +1,57 @@
+"""The assembled Newton tangent against central finite differences of the
+assembled residual (K du vs (R(u + h du) - R(u - h du)) / 2h, random du) at
+every Newton iteration of a plastic, large-strain scene with a follower
+pressure, for every element formulation: plane strain, axisymmetric and 3D,
+standard and F-bar; and Newton converges in few iterations.
+
+The first iteration of a step after a plastic one is left out: there u = u_n
+and the yielded points sit exactly on the kink between elastic unloading and
+plastic loading, where the residual has no derivative (the central difference
+averages both branches)."""
+import math
+import re
+from anvil_test import run, read_csv, check, finish
+
+cases = [
+    ("plane strain, F-bar", []),
+    ("plane strain, standard Q1", ["Mechanics/Element=standard"]),
+    ("plane strain, standard Q2", ["Mechanics/Element=standard", "Mechanics/Polynomial degree=2"]),
+    ("axisymmetric, F-bar", ["Mechanics/Two-dimensional model=axisymmetric"]),
+    ("axisymmetric, standard", ["Mechanics/Two-dimensional model=axisymmetric", "Mechanics/Element=standard"]),
+    ("axisymmetric on the axis, F-bar", ["Mechanics/Two-dimensional model=axisymmetric",
+                                         "Geometry/Blocks=body: 0, 0, 1, 1, 4, 4"]),
+    ("3D, F-bar", ["Dimension=3", "Geometry/Blocks=body: 0, 0, 0, 1, 1, 1, 3, 3, 3",
+                   "Boundary conditions/Displacement=bottom: ux = 0, uy = 0, uz = 0; top: ux = 0.05*t, uy = -0.1*t, uz = 0.02*t"]),
+    ("3D, standard", ["Dimension=3", "Mechanics/Element=standard", "Geometry/Blocks=body: 0, 0, 0, 1, 1, 1, 3, 3, 3",
+                      "Boundary conditions/Displacement=bottom: ux = 0, uy = 0, uz = 0; top: ux = 0.05*t, uy = -0.1*t, uz = 0.02*t"]),
+]
+for name, sets in cases:
+    tag = re.sub("[^a-z0-9]+", "_", name.lower())
+    out, s, stdout = run("tests/plastic_block.prm", sets + ["Mechanics/Newton/Check tangent=true", "Output/Verbosity=normal"],
+                         name="global_tangent_" + tag)
+    errors = []
+    first = True
+    for line in stdout.splitlines():
+        m = re.search(r"tangent check: \|K du - FD\| / \|K du\| = (\S+)", line)
+        if m:
+            if not first or not errors:
+                errors.append(float(m.group(1)))
+            first = False
+        elif line.startswith("step"):
+            first = True
+    n = read_csv(out + "/newton.csv")
+    orders = []
+    for st in sorted(set(int(x) for x in n["step"])):
+        r = [n["residual"][i] for i in range(len(n["step"])) if int(n["step"][i]) == st and n["converged"][i] == 1]
+        rr = [x for x in r if x > 1e-9 * r[0]]
+        p = [math.log(rr[k + 1] / rr[k]) / math.log(rr[k] / rr[k - 1]) for k in range(1, len(rr) - 1)
+             if rr[k + 1] < rr[k] < rr[k - 1]]
+        if p:
+            orders.append(p[-1])
+    plastic = s["quantities_of_interest"] if "quantities_of_interest" in s else {}
+    print("  %-32s %2d checks, worst FD error %.2e, Newton %d its / %d steps, last orders %s"
+          % (name, len(errors), max(errors), s["newton_iterations"], s["steps"], " ".join("%.2f" % o for o in orders)))
+    check(len(errors) > 0 and max(errors) < 1e-5, "%s: tangent matches finite differences (%.2e)" % (name, max(errors)))
+    check(s["cut_backs"] == 0, "%s: no cut-back" % name)
+    check(s["newton_iterations"] <= 12 * s["steps"], "%s: at most 12 Newton iterations per step (load steps of 25 %%)" % name)
+finish()
