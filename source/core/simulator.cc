@@ -151,7 +151,16 @@ namespace anvil
     while (t < time.end_time - eps)
       {
         const double step = std::min(dt, time.end_time - t);
-        const auto   result = mechanical->solve_step(t, t + step);
+        auto result = mechanical->solve_step(t, t + step);
+        if (result.converged && mechanics_parameters.maximum_plastic_increment > 0 &&
+            mechanical->largest_plastic_increment() > mechanics_parameters.maximum_plastic_increment)
+          {
+            result.converged = false;
+            result.failure   = "the plastic strain grew by " +
+                             Utilities::to_string(mechanical->largest_plastic_increment(), 3) +
+                             " at a point (limit " +
+                             Utilities::to_string(mechanics_parameters.maximum_plastic_increment) + ")";
+          }
         n_newton += result.iterations;
         n_linear += result.linear_iterations;
         for (unsigned int k = 0; k < result.residuals.size(); ++k)

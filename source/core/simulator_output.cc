@@ -170,7 +170,9 @@ namespace anvil
         probes_csv.open(output_dir + "/probes.csv", columns, root);
       }
     energy_csv.open(output_dir + "/energy.csv",
-                    {"step", "time", "external_work", "internal_work", "balance_error"}, root);
+                    {"step", "time", "external_work", "internal_work", "kinetic_energy",
+                     "plastic_work", "elastic_energy", "stress_work", "balance_error"},
+                    root);
     newton_csv.open(output_dir + "/newton.csv",
                     {"step", "time", "iteration", "residual", "increment", "line_search", "converged"},
                     root);
@@ -203,9 +205,10 @@ namespace anvil
           }
         probes_csv.add_row(row);
       }
-    const double we = mechanical->external_work(), wi = mechanical->internal_work();
-    energy_csv.add_row({double(step), t, we, wi,
-                        std::abs(we - wi) / std::max({std::abs(we), std::abs(wi), 1e-300})});
+    const auto &e = mechanical->energy();
+    energy_csv.add_row({double(step), t, e.external_work, e.internal_work, e.kinetic,
+                        e.plastic_work, e.elastic_energy, e.stress_work,
+                        e.balance_error()});
   }
 
   template <int dim>
@@ -219,6 +222,9 @@ namespace anvil
     data_out.add_data_vector(mechanical->displacement(),
                              std::vector<std::string>(dim, "displacement"),
                              DataOut<dim>::type_dof_data, interpretation);
+    if (mechanical->is_dynamic())
+      data_out.add_data_vector(mechanical->velocity(), std::vector<std::string>(dim, "velocity"),
+                               DataOut<dim>::type_dof_data, interpretation);
     const auto fields = mechanical->cell_fields();
     for (unsigned int i = 0; i < fields.names.size(); ++i)
       data_out.add_data_vector(fields.values[i], fields.names[i], DataOut<dim>::type_cell_data);
@@ -329,10 +335,15 @@ namespace anvil
     const double memory = Utilities::MPI::sum(peak_memory_mb(), mpi_communicator);
     s.set("peak_memory_MB", memory);
     s.set("memory_per_dof_bytes", memory * 1024. * 1024. / std::max<double>(1, mechanical->n_dofs()));
-    const double we = mechanical->external_work(), wi = mechanical->internal_work();
-    s.set("energy", "external_work", we);
-    s.set("energy", "internal_work", wi);
-    s.set("energy", "balance_error", std::abs(we - wi) / std::max({std::abs(we), std::abs(wi), 1e-300}));
+    const auto &e = mechanical->energy();
+    s.set("energy", "external_work", e.external_work);
+    s.set("energy", "internal_work", e.internal_work);
+    s.set("energy", "kinetic_energy", e.kinetic);
+    s.set("energy", "initial_kinetic_energy", e.initial_kinetic);
+    s.set("energy", "plastic_work", e.plastic_work);
+    s.set("energy", "elastic_energy", e.elastic_energy);
+    s.set("energy", "stress_work", e.stress_work);
+    s.set("energy", "balance_error", e.balance_error());
     for (const auto &[name, value] : qoi_values)
       s.set("quantities_of_interest", name, value);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)

@@ -53,9 +53,11 @@ namespace anvil
     system_rhs     = 0;
     internal_force = 0;
     external_force = 0;
+    inertia_force  = 0;
 
     const UpdateFlags flags = update_gradients | update_JxW_values |
-                              (axisymmetric ? update_values | update_quadrature_points : update_default);
+                              (axisymmetric ? update_values | update_quadrature_points : update_default) |
+                              (parameters.dynamic || gravity.norm() > 0 ? update_values : update_default);
     FEValues<dim> fe_values(mapping, fe, quadrature, flags);
     FEValues<dim> fe_center(mapping, fe, QMidpoint<dim>(),
                             update_gradients | update_values | update_quadrature_points);
@@ -69,6 +71,14 @@ namespace anvil
     Vector<double>     cell_internal(n_dofs), cell_external(n_dofs), cell_rhs(n_dofs);
     std::vector<types::global_dof_index> dof_indices(n_dofs);
     std::vector<double>                  local_u(n_dofs), local_u_old(n_dofs);
+    std::vector<double>                  local_v_old(n_dofs), local_a_old(n_dofs), local_a(n_dofs);
+    Vector<double>                       cell_inertia(n_dofs);
+    FullMatrix<double>                   cell_mass(n_dofs, n_dofs);
+    const bool dynamic = parameters.dynamic;
+    const bool body_force = gravity.norm() > 0;
+    // ∂a_{n+1}/∂u_{n+1} of Newmark, scaled by (1 − α_m) of the generalized-α balance.
+    const double mass_factor = dynamic ? (1 - alpha_m) / (newmark_beta * current_time_step *
+                                                          current_time_step) : 0;
     std::vector<Tensor<2, dim>>          face_grad_u(face_quadrature.size());
     std::vector<Tensor<1, dim>>          face_u(face_quadrature.size());
     std::vector<unsigned int>            component(n_dofs);
@@ -107,6 +117,8 @@ namespace anvil
     bool         inverted = false;
     unsigned int n_cells  = 0;
     step_internal_work    = 0;
+    step_plastic_work     = 0;
+    max_plastic_increment = 0;
     material_failure.clear();
 
     // F (3x3) from local values at point q of @p v (radius R for the hoop term).
@@ -151,6 +163,18 @@ namespace anvil
           cell_matrix = 0;
         cell_internal = 0;
         cell_external = 0;
+        if (dynamic)
+          {
+            cell_mass = 0;
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              {
+                local_v_old[i] = velocity_old_ghosted(dof_indices[i]);
+                local_a_old[i] = acceleration_old_ghosted(dof_indices[i]);
+                local_a[i] = newmark_acceleration(local_u[i], local_u_old[i], local_v_old[i],
+                                                  local_a_old[i]);
+              }
+          }
+        const double rho = (dynamic || body_force) ? materials.at(cell->material_id())->density() : 0;
 
         // Cell centre: J₀ and ∂J₀ for F-bar.
         double       J0 = 1, J0_old = 1;
@@ -226,6 +250,24 @@ namespace anvil
             step_internal_work += 0.5 * ((response.stress + point.committed_stress()) *
                                          kin.strain_increment) *
                                   determinant(0.5 * (F + F_old)) * w;
+            step_plastic_work += response.plastic_work_rate * current_time_step * J * w;
+            max_plastic_increment =
+              std::max(max_plastic_increment,
+                       response.equivalent_plastic_strain - point.committed_equivalent_plastic_strain());
+
+            // Mass (reference configuration: ρ₀ dV is conserved) and body force.
+            if (dynamic || body_force)
+              for (unsigned int a = 0; a < n_dofs; ++a)
+                {
+                  const double Na = fe_values.shape_value_component(a, q, component[a]);
+                  if (body_force)
+                    cell_external(a) += rho * gravity[component[a]] * Na * w;
+                  if (dynamic)
+                    for (unsigned int b = 0; b < n_dofs; ++b)
+                      if (component[a] == component[b])
+                        cell_mass(a, b) +=
+                          rho * Na * fe_values.shape_value_component(b, q, component[b]) * w;
+                }
 
             for (unsigned int a = 0; a < n_dofs; ++a)
               {
@@ -364,6 +406,37 @@ namespace anvil
 
         for (unsigned int i = 0; i < n_dofs; ++i)
           cell_rhs(i) = cell_external(i) - cell_internal(i);
+        if (dynamic)
+          {
+            // Generalized α: M ã + (1 − α_f) R(u_{n+1}) + α_f R(u_n) = 0 with
+            // ã = (1 − α_m) a_{n+1} + α_m a_n; α_f R(u_n) is added globally below.
+            if (parameters.lumped_mass)
+              for (unsigned int a = 0; a < n_dofs; ++a)
+                {
+                  double m = 0;
+                  for (unsigned int b = 0; b < n_dofs; ++b)
+                    m += cell_mass(a, b);
+                  for (unsigned int b = 0; b < n_dofs; ++b)
+                    cell_mass(a, b) = (a == b) ? m : 0.;
+                }
+            cell_rhs *= (1 - alpha_f);
+            if (with_matrix)
+              cell_matrix *= (1 - alpha_f);
+            for (unsigned int a = 0; a < n_dofs; ++a)
+              {
+                double ma = 0, ma_tilde = 0;
+                for (unsigned int b = 0; b < n_dofs; ++b)
+                  {
+                    ma += cell_mass(a, b) * local_a[b];
+                    ma_tilde += cell_mass(a, b) * ((1 - alpha_m) * local_a[b] + alpha_m * local_a_old[b]);
+                    if (with_matrix)
+                      cell_matrix(a, b) += mass_factor * cell_mass(a, b);
+                  }
+                cell_inertia(a) = ma;
+                cell_rhs(a) -= ma_tilde;
+              }
+            inertia_force.add(dof_indices, cell_inertia);
+          }
         if (with_matrix)
           active_constraints->distribute_local_to_global(cell_matrix, cell_rhs, dof_indices,
                                                          system_matrix, system_rhs);
@@ -378,7 +451,17 @@ namespace anvil
     system_rhs.compress(VectorOperation::add);
     internal_force.compress(VectorOperation::add);
     external_force.compress(VectorOperation::add);
-    step_internal_work = Utilities::MPI::sum(step_internal_work, mpi_communicator);
+    inertia_force.compress(VectorOperation::add);
+    if (dynamic)
+      {
+        // − α_f R(u_n) on the free dofs.
+        TrilinosWrappers::MPI::Vector old_part(static_residual_old);
+        active_constraints->set_zero(old_part);
+        system_rhs.add(-alpha_f, old_part);
+      }
+    step_internal_work    = Utilities::MPI::sum(step_internal_work, mpi_communicator);
+    step_plastic_work     = Utilities::MPI::sum(step_plastic_work, mpi_communicator);
+    max_plastic_increment = Utilities::MPI::max(max_plastic_increment, mpi_communicator);
 
     const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -387,8 +470,80 @@ namespace anvil
     return Utilities::MPI::max(inverted ? 1 : 0, mpi_communicator) == 0;
   }
 
+  template <int dim>
+  void MechanicalProblem<dim>::lumped_mass(TrilinosWrappers::MPI::Vector &m) const
+  {
+    FEValues<dim> fe_values(mapping, fe, quadrature, update_values | update_JxW_values |
+                                                       update_quadrature_points);
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    Vector<double>                       local(fe.n_dofs_per_cell());
+    m = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(dofs);
+          const double rho = materials.at(cell->material_id())->density();
+          local            = 0;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const double w = fe_values.JxW(q) *
+                               (axisymmetric ? 2 * numbers::PI * fe_values.quadrature_point(q)[0] : 1.);
+              for (unsigned int a = 0; a < dofs.size(); ++a)
+                local(a) += rho *
+                            fe_values.shape_value_component(a, q, fe.system_to_component_index(a).first) * w;
+            }
+          m.add(dofs, local);
+        }
+    m.compress(VectorOperation::add);
+  }
+
+  template <int dim>
+  double MechanicalProblem<dim>::kinetic_energy(const TrilinosWrappers::MPI::Vector &v) const
+  {
+    FEValues<dim> fe_values(mapping, fe, quadrature, update_values | update_JxW_values |
+                                                       update_quadrature_points);
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    const unsigned int                   n = fe.n_dofs_per_cell();
+    std::vector<double>                  local(n), lumped(n);
+    double                               energy = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(dofs);
+          for (unsigned int a = 0; a < n; ++a)
+            local[a] = v(dofs[a]);
+          const double rho = materials.at(cell->material_id())->density();
+          std::fill(lumped.begin(), lumped.end(), 0.);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const double w = fe_values.JxW(q) *
+                               (axisymmetric ? 2 * numbers::PI * fe_values.quadrature_point(q)[0] : 1.);
+              Tensor<1, dim> vq;
+              for (unsigned int a = 0; a < n; ++a)
+                {
+                  const unsigned int c  = fe.system_to_component_index(a).first;
+                  const double       Na = fe_values.shape_value_component(a, q, c);
+                  vq[c] += local[a] * Na;
+                  lumped[a] += rho * Na * w;
+                }
+              if (!parameters.lumped_mass)
+                energy += 0.5 * rho * (vq * vq) * w;
+            }
+          if (parameters.lumped_mass)
+            for (unsigned int a = 0; a < n; ++a)
+              energy += 0.5 * lumped[a] * local[a] * local[a];
+        }
+    return Utilities::MPI::sum(energy, mpi_communicator);
+  }
+
   template bool MechanicalProblem<2>::assemble(bool, double);
   template bool MechanicalProblem<3>::assemble(bool, double);
   template Tensor<2, 3> MechanicalProblem<2>::deformation_gradient(const Tensor<2, 2> &, double, double) const;
   template Tensor<2, 3> MechanicalProblem<3>::deformation_gradient(const Tensor<2, 3> &, double, double) const;
+  template void MechanicalProblem<2>::lumped_mass(TrilinosWrappers::MPI::Vector &) const;
+  template void MechanicalProblem<3>::lumped_mass(TrilinosWrappers::MPI::Vector &) const;
+  template double MechanicalProblem<2>::kinetic_energy(const TrilinosWrappers::MPI::Vector &) const;
+  template double MechanicalProblem<3>::kinetic_energy(const TrilinosWrappers::MPI::Vector &) const;
 } // namespace anvil

@@ -89,6 +89,11 @@ namespace anvil
       "Prescribed displacements in mm: a ';'-separated list of "
       "'boundary: ux = expr, uy = expr' items (uz in 3D). Expressions in the "
       "reference coordinates x, y, z (mm) and time t (s). Unnamed components stay free.");
+    prm.declare_entry(
+      "Velocity", "", Patterns::Anything(),
+      "Prescribed velocities in mm/s: a ';'-separated list of 'boundary: ux = expr, ...' "
+      "items like Displacement (expressions in x, y, z and t); the face moves by "
+      "dt (v(t_n) + v(t_n+1))/2 per step. A component may not be both here and in Displacement.");
     prm.declare_entry("Pressure", "", Patterns::Anything(),
                       "Follower pressures in MPa: a ';'-separated list of 'boundary: expr' "
                       "items. Positive pressure pushes into the body along the current normal.");
@@ -103,40 +108,55 @@ namespace anvil
     prm.enter_subsection("Boundary conditions");
     const std::string displacement = prm.get("Displacement");
     const std::string pressure     = prm.get("Pressure");
+    const std::string velocity     = prm.get("Velocity");
     prm.leave_subsection();
 
-    const std::string dpath = "Boundary conditions/Displacement";
-    prescribed.clear();
-    for (const auto &item : split_outside_parentheses(displacement, ';'))
-      {
-        if (item.empty())
-          continue;
-        const auto colon = item.find(':');
-        if (colon == std::string::npos)
-          scene.fail(dpath, "item '" + item + "': expected 'boundary: ux = expr, ...'");
-        PrescribedDisplacement bc;
-        bc.name     = trim(item.substr(0, colon));
-        bc.boundary = geometry.boundary_id(bc.name, scene.where(dpath));
-        bc.mask     = ComponentMask(dim, false);
-        bc.components.resize(dim);
-        for (const auto &assignment : split_outside_parentheses(item.substr(colon + 1), ','))
-          {
-            const auto eq = assignment.find('=');
-            const std::string component = eq == std::string::npos ? "" : trim(assignment.substr(0, eq));
-            int c = -1;
-            for (unsigned int d = 0; d < dim; ++d)
-              if (component == std::string("u") + "xyz"[d])
-                c = d;
-            if (c < 0)
-              scene.fail(dpath, "item '" + item + "': '" + assignment + "' should be " +
-                                  (dim == 2 ? "ux = expr or uy = expr" : "ux, uy or uz = expr"));
-            if (bc.mask[c])
-              scene.fail(dpath, "item '" + item + "' sets " + component + " twice");
-            bc.mask.set(c, true);
-            bc.components[c] = parse_expression<dim>(trim(assignment.substr(eq + 1)), scene, dpath);
-          }
-        prescribed.push_back(bc);
-      }
+    auto parse_list = [&](const std::string &text, const std::string &dpath) {
+      std::vector<PrescribedDisplacement> list;
+      for (const auto &item : split_outside_parentheses(text, ';'))
+        {
+          if (item.empty())
+            continue;
+          const auto colon = item.find(':');
+          if (colon == std::string::npos)
+            scene.fail(dpath, "item '" + item + "': expected 'boundary: ux = expr, ...'");
+          PrescribedDisplacement bc;
+          bc.name     = trim(item.substr(0, colon));
+          bc.boundary = geometry.boundary_id(bc.name, scene.where(dpath));
+          bc.mask     = ComponentMask(dim, false);
+          bc.components.resize(dim);
+          for (const auto &assignment : split_outside_parentheses(item.substr(colon + 1), ','))
+            {
+              const auto eq = assignment.find('=');
+              const std::string component =
+                eq == std::string::npos ? "" : trim(assignment.substr(0, eq));
+              int c = -1;
+              for (unsigned int d = 0; d < dim; ++d)
+                if (component == std::string("u") + "xyz"[d])
+                  c = d;
+              if (c < 0)
+                scene.fail(dpath, "item '" + item + "': '" + assignment + "' should be " +
+                                    (dim == 2 ? "ux = expr or uy = expr" : "ux, uy or uz = expr"));
+              if (bc.mask[c])
+                scene.fail(dpath, "item '" + item + "' sets " + component + " twice");
+              bc.mask.set(c, true);
+              bc.components[c] =
+                parse_expression<dim>(trim(assignment.substr(eq + 1)), scene, dpath);
+            }
+          list.push_back(bc);
+        }
+      return list;
+    };
+    prescribed          = parse_list(displacement, "Boundary conditions/Displacement");
+    prescribed_velocity = parse_list(velocity, "Boundary conditions/Velocity");
+    for (const auto &v : prescribed_velocity)
+      for (const auto &d : prescribed)
+        if (v.boundary == d.boundary)
+          for (unsigned int c = 0; c < dim; ++c)
+            if (v.mask[c] && d.mask[c])
+              scene.fail("Boundary conditions/Velocity",
+                         "prescribes u" + std::string(1, "xyz"[c]) + " on '" + v.name +
+                           "', which Boundary conditions/Displacement prescribes already");
 
     const std::string ppath = "Boundary conditions/Pressure";
     pressure_loads.clear();
@@ -168,13 +188,32 @@ namespace anvil
   }
 
   template <int dim>
+  void BoundaryConditions<dim>::interpolate_velocity_increment(
+    const DoFHandler<dim>                     &dof_handler,
+    const double                               t_old,
+    const double                               t_new,
+    std::map<types::global_dof_index, double> &increments) const
+  {
+    for (const auto &bc : prescribed_velocity)
+      {
+        std::map<types::global_dof_index, double> v_old, v_new;
+        ComponentFunction<dim> f_old(bc.components, t_old), f_new(bc.components, t_new);
+        VectorTools::interpolate_boundary_values(dof_handler, bc.boundary, f_old, v_old, bc.mask);
+        VectorTools::interpolate_boundary_values(dof_handler, bc.boundary, f_new, v_new, bc.mask);
+        for (const auto &[dof, v] : v_new)
+          increments[dof] = 0.5 * (t_new - t_old) * (v + v_old[dof]);
+      }
+  }
+
+  template <int dim>
   void BoundaryConditions<dim>::make_homogeneous_constraints(const DoFHandler<dim>     &dof_handler,
                                                              AffineConstraints<double> &constraints) const
   {
-    for (const auto &bc : prescribed)
-      VectorTools::interpolate_boundary_values(dof_handler, bc.boundary,
-                                               Functions::ZeroFunction<dim>(dim), constraints,
-                                               bc.mask);
+    for (const auto *list : {&prescribed, &prescribed_velocity})
+      for (const auto &bc : *list)
+        VectorTools::interpolate_boundary_values(dof_handler, bc.boundary,
+                                                 Functions::ZeroFunction<dim>(dim), constraints,
+                                                 bc.mask);
   }
 
   template class BoundaryConditions<2>;

@@ -42,11 +42,30 @@ namespace anvil
     prm.declare_entry("Temperature", "293", Patterns::Double(0),
                       "Uniform temperature in K of a scene without a temperature field: the "
                       "material laws are evaluated at it.");
+    prm.declare_entry("Gravity", "", Patterns::Anything(),
+                      "Body force per unit mass as a vector 'gx, gy[, gz]' in mm/s^2 (e.g. 0, -9810); "
+                      "empty: none.");
+    prm.declare_entry("Maximum plastic strain increment", "0", Patterns::Double(0),
+                      "Cut the step back if any point's equivalent plastic strain grows by more than "
+                      "this in one step (dimensionless; 0: no limit).");
+    prm.enter_subsection("Dynamics");
+    prm.declare_entry("Type", "quasi-static", Patterns::Selection("quasi-static|implicit"),
+                      "quasi-static: no inertia; implicit: generalized-alpha time integration of "
+                      "M a + f_int = f_ext (Chung & Hulbert 1993) with force averaging.");
+    prm.declare_entry("Spectral radius", "1", Patterns::Double(0, 1),
+                      "rho_inf in [0, 1]: 1 conserves energy (trapezoidal rule, the seed's mid-point "
+                      "member); smaller values damp the highest frequencies (0.8 is common).");
+    prm.declare_entry("Mass", "consistent", Patterns::Selection("consistent|lumped"),
+                      "Consistent or row-sum lumped mass matrix.");
+    prm.declare_entry("Initial velocity", "", Patterns::Anything(),
+                      "'ux = expr, uy = expr[, uz = expr]' in mm/s, expressions in x, y, z (mm); "
+                      "empty: at rest. An impact is an initial velocity.");
+    prm.leave_subsection();
     prm.enter_subsection("Newton");
     prm.declare_entry("Maximum iterations", "15", Patterns::Integer(1),
                       "Newton iterations per time step before the step is cut back.");
     prm.declare_entry("Residual tolerance", "1e-8", Patterns::Double(0),
-                      "Relative residual tolerance: |R| <= tol * max(|f_int|, |f_ext|) (dimensionless).");
+                      "Relative residual tolerance: |R| <= tol * max(|f_int|, |f_ext|, |M a|, |R_0|), R_0 the first residual of the step (dimensionless).");
     prm.declare_entry("Absolute residual tolerance", "1e-12", Patterns::Double(0),
                       "Residual norm in N below which a step is converged whatever the scale.");
     prm.declare_entry("Displacement tolerance", "1e-8", Patterns::Double(0),
@@ -80,6 +99,49 @@ namespace anvil
     f_bar             = prm.get("Element") == "F-bar";
     axisymmetric      = dim == 2 && prm.get("Two-dimensional model") == "axisymmetric";
     temperature       = prm.get_double("Temperature");
+    gravity           = prm.get("Gravity");
+    maximum_plastic_increment = prm.get_double("Maximum plastic strain increment");
+    prm.enter_subsection("Dynamics");
+    dynamic          = prm.get("Type") == "implicit";
+    spectral_radius  = prm.get_double("Spectral radius");
+    lumped_mass      = prm.get("Mass") == "lumped";
+    initial_velocity = prm.get("Initial velocity");
+    prm.leave_subsection();
+    for (const auto &assignment : split_outside_parentheses(initial_velocity, ','))
+      {
+        if (assignment.empty())
+          continue;
+        const std::string path = "Mechanics/Dynamics/Initial velocity";
+        const auto        eq   = assignment.find('=');
+        const std::string c    = eq == std::string::npos ? "" : trim(assignment.substr(0, eq));
+        bool              ok   = false;
+        for (unsigned int d = 0; d < dim; ++d)
+          ok = ok || c == std::string("u") + "xyz"[d];
+        if (!ok)
+          scene.fail(path, "'" + assignment + "' should be " +
+                             (dim == 2 ? "ux = expr or uy = expr" : "ux, uy or uz = expr") + " (mm/s)");
+        parse_expression<dim>(trim(assignment.substr(eq + 1)), scene, path);
+      }
+    // Check the vectors now (one-line errors before any work).
+    if (!gravity.empty())
+      {
+        const auto parts = split_outside_parentheses(gravity, ',');
+        bool       ok    = parts.size() == dim;
+        for (const auto &x : parts)
+          try
+            {
+              std::size_t used = 0;
+              std::stod(x, &used);
+              ok = ok && used == x.size();
+            }
+          catch (...)
+            {
+              ok = false;
+            }
+        if (!ok)
+          scene.fail("Mechanics/Gravity", "= '" + gravity + "': expected " + std::to_string(dim) +
+                                            " numbers 'gx, gy" + (dim == 3 ? ", gz'" : "'") + " in mm/s^2");
+      }
     prm.enter_subsection("Newton");
     max_iterations              = prm.get_integer("Maximum iterations");
     residual_tolerance          = prm.get_double("Residual tolerance");
@@ -146,12 +208,25 @@ namespace anvil
     system_matrix.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
 
     for (auto *v : {&system_rhs, &internal_force, &internal_force_old, &external_force,
-                    &owned_solution, &owned_old_solution})
+                    &external_force_old, &reaction_force, &reaction_force_old, &owned_solution,
+                    &owned_old_solution, &velocity_old, &acceleration_old, &static_residual_old,
+                    &inertia_force})
       v->reinit(locally_owned_dofs, mpi_communicator);
-    solution.reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
-    old_solution.reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+    for (auto *v : {&solution, &old_solution, &velocity_ghosted, &velocity_old_ghosted,
+                    &acceleration_old_ghosted})
+      v->reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+
+    gravity = Tensor<1, dim>();
+    if (!parameters.gravity.empty())
+      {
+        const auto parts = split_outside_parentheses(parameters.gravity, ',');
+        for (unsigned int d = 0; d < dim; ++d)
+          gravity[d] = std::stod(parts[d]);
+      }
 
     setup_quadrature_point_data();
+    if (parameters.dynamic)
+      setup_dynamics();
   }
 
   template <int dim>
@@ -228,6 +303,115 @@ namespace anvil
       control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(30));
     gmres.solve(system_matrix, du, system_rhs, amg);
     return control.last_step();
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::setup_dynamics()
+  {
+    // Generalized-α (Chung & Hulbert 1993) from the spectral radius ρ∞.
+    const double rho = parameters.spectral_radius;
+    alpha_m          = (2 * rho - 1) / (rho + 1);
+    alpha_f          = rho / (rho + 1);
+    newmark_gamma    = 0.5 - alpha_m + alpha_f;
+    newmark_beta     = 0.25 * (1 - alpha_m + alpha_f) * (1 - alpha_m + alpha_f);
+
+    // Initial velocity at the dofs' support points.
+    if (!parameters.initial_velocity.empty())
+      {
+        std::vector<std::shared_ptr<FunctionParser<dim>>> v(dim);
+        for (const auto &assignment : split_outside_parentheses(parameters.initial_velocity, ','))
+          {
+            const auto eq = assignment.find('=');
+            const auto c  = trim(assignment.substr(0, eq));
+            for (unsigned int d = 0; d < dim; ++d)
+              if (c == std::string("u") + "xyz"[d])
+                v[d] = parse_expression<dim>(trim(assignment.substr(eq + 1)), Scene(),
+                                             "Mechanics/Dynamics/Initial velocity");
+          }
+        std::map<types::global_dof_index, Point<dim>> support;
+        DoFTools::map_dofs_to_support_points(mapping, dof_handler, support);
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+              cell->get_dof_indices(dofs);
+              for (unsigned int i = 0; i < dofs.size(); ++i)
+                {
+                  const unsigned int c = fe.system_to_component_index(i).first;
+                  if (v[c] && locally_owned_dofs.is_element(dofs[i]))
+                    velocity_old(dofs[i]) = v[c]->value(support[dofs[i]]);
+                }
+            }
+        velocity_old.compress(VectorOperation::insert);
+      }
+    velocity_old_ghosted = velocity_old;
+    velocity_ghosted     = velocity_old;
+
+    // Initial acceleration from M a₀ = f_ext(0) − f_int(u₀) with the lumped
+    // mass (exact for a uniform body force on a free body; zero at rest).
+    current_time_step = 1;
+    assemble(false, 0);
+    TrilinosWrappers::MPI::Vector lumped(locally_owned_dofs, mpi_communicator);
+    lumped_mass(lumped);
+    for (const auto i : locally_owned_dofs)
+      if (!constraints.is_constrained(i) && lumped(i) > 0)
+        acceleration_old(i) = (external_force(i) - internal_force(i)) / lumped(i);
+    acceleration_old.compress(VectorOperation::insert);
+    acceleration_old_ghosted = acceleration_old;
+    static_residual_old      = internal_force;
+    static_residual_old -= external_force;
+    energy_audit.kinetic = energy_audit.initial_kinetic = kinetic_energy(velocity_ghosted);
+  }
+
+  template <int dim>
+  double MechanicalProblem<dim>::elastic_strain_energy() const
+  {
+    FEValues<dim> fe_values(mapping, fe, quadrature,
+                            update_gradients | update_values | update_JxW_values |
+                              update_quadrature_points);
+    const unsigned int                   n_q = quadrature.size();
+    std::vector<Tensor<2, dim>>          grad_u(n_q);
+    std::vector<Tensor<1, dim>>          u_values(n_q);
+    const FEValuesExtractors::Vector     displacements(0);
+    double                               energy = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[displacements].get_function_gradients(solution, grad_u);
+          fe_values[displacements].get_function_values(solution, u_values);
+          const auto  &m = *materials.at(cell->material_id());
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const double R = axisymmetric ? fe_values.quadrature_point(q)[0] : 1.;
+              const double J = determinant(
+                deformation_gradient(grad_u[q], axisymmetric ? u_values[q][0] : 0., R));
+              const auto  &sigma = points[cell->active_cell_index() * n_q + q]->stress();
+              const double p     = trace(sigma) / 3;
+              const auto   s     = deviator(sigma);
+              energy += 0.5 * (p * p / m.bulk_modulus() + (s * s) / (2 * m.shear_modulus())) * J *
+                        fe_values.JxW(q) * (axisymmetric ? 2 * numbers::PI * R : 1.);
+            }
+        }
+    return Utilities::MPI::sum(energy, mpi_communicator);
+  }
+
+  template <int dim>
+  double MechanicalProblem<dim>::newmark_acceleration(const double u, const double u_old,
+                                                      const double v_old, const double a_old) const
+  {
+    const double dt = current_time_step;
+    return (u - u_old - dt * v_old) / (newmark_beta * dt * dt) -
+           (0.5 - newmark_beta) / newmark_beta * a_old;
+  }
+
+  template <int dim>
+  double MechanicalProblem<dim>::Energy::balance_error() const
+  {
+    const double residual = external_work - internal_work - (kinetic - initial_kinetic);
+    const double scale    = std::max({std::abs(external_work), std::abs(internal_work),
+                                      std::abs(kinetic), std::abs(initial_kinetic), 1e-300});
+    return std::abs(residual) / scale;
   }
 
   template <int dim>
@@ -310,6 +494,14 @@ namespace anvil
             predictor_constraints.add_line(dof);
             predictor_constraints.set_inhomogeneity(dof, value - old_solution(dof));
           }
+      std::map<types::global_dof_index, double> increments;
+      boundary_conditions.interpolate_velocity_increment(dof_handler, time_old, time_new, increments);
+      for (const auto &[dof, increment] : increments)
+        if (locally_relevant_dofs.is_element(dof) && !predictor_constraints.is_constrained(dof))
+          {
+            predictor_constraints.add_line(dof);
+            predictor_constraints.set_inhomogeneity(dof, increment);
+          }
     }
     predictor_constraints.close();
     active_constraints = &predictor_constraints;
@@ -344,7 +536,11 @@ namespace anvil
             assemble(true, time_new); // restore K and R at u
           }
 
-        const double scale = std::max(internal_force.l2_norm(), external_force.l2_norm());
+        // Force scale: the forces of the step, and the first residual of the
+        // step (in dynamics the inertia of the predictor dominates it, and
+        // round-off of M ã is relative to it).
+        const double scale = std::max({internal_force.l2_norm(), external_force.l2_norm(),
+                                       inertia_force.l2_norm(), result.residuals.front()});
         TrilinosWrappers::MPI::Vector step_u(owned_solution);
         step_u -= owned_old_solution;
         const double du_scale = step_u.l2_norm();
@@ -353,7 +549,12 @@ namespace anvil
         const bool increment_ok =
           (last_increment >= 0 && last_increment <= parameters.displacement_tolerance * du_scale) ||
           r <= parameters.absolute_residual_tolerance;
-        if (residual_ok && (increment_ok || it == 0) && !(it == 0 && has_jump))
+        // Corrections a thousand times below the increment tolerance mean the
+        // residual sits on its round-off floor: accept.
+        const bool stagnated = last_increment >= 0 &&
+                               last_increment <= 1e-3 * parameters.displacement_tolerance * du_scale &&
+                               r <= 1e3 * parameters.residual_tolerance * scale;
+        if ((residual_ok && (increment_ok || it == 0) && !(it == 0 && has_jump)) || stagnated)
           {
             result.converged  = true;
             result.iterations = it;
@@ -396,7 +597,8 @@ namespace anvil
             owned_solution.add(alpha, du);
             solution = owned_solution;
             // The first update carries the boundary jump: take it whole.
-            if (!parameters.line_search || ls == 5 || (it == 0 && has_jump))
+            // Near convergence (and on the round-off floor) s(α) is noise.
+            if (!parameters.line_search || ls == 5 || (it == 0 && has_jump) || residual_ok)
               break;
             const bool ok = assemble(false, time_new);
             if (!ok)
@@ -426,14 +628,49 @@ namespace anvil
   template <int dim>
   void MechanicalProblem<dim>::commit_step()
   {
-    // Trapezoidal work of the forces that hold the body in equilibrium:
-    // at equilibrium f_int = f_ext + reactions at every dof.
     TrilinosWrappers::MPI::Vector du(owned_solution);
     du -= owned_old_solution;
-    TrilinosWrappers::MPI::Vector mean_force(internal_force);
-    mean_force += internal_force_old;
-    work_external += 0.5 * (mean_force * du);
-    work_internal += step_internal_work;
+
+    if (parameters.dynamic)
+      {
+        // Newmark update of a and v from the converged u.
+        TrilinosWrappers::MPI::Vector a(acceleration_old), v(velocity_old);
+        const double                  dt = current_time_step;
+        for (const auto i : locally_owned_dofs)
+          {
+            a(i) = newmark_acceleration(owned_solution(i), owned_old_solution(i), velocity_old(i),
+                                        acceleration_old(i));
+            v(i) = velocity_old(i) + dt * ((1 - newmark_gamma) * acceleration_old(i) +
+                                           newmark_gamma * a(i));
+          }
+        a.compress(VectorOperation::insert);
+        v.compress(VectorOperation::insert);
+        acceleration_old         = a;
+        velocity_old             = v;
+        acceleration_old_ghosted = a;
+        velocity_old_ghosted     = v;
+        velocity_ghosted         = v;
+        static_residual_old      = internal_force;
+        static_residual_old -= external_force;
+        energy_audit.kinetic = kinetic_energy(velocity_ghosted);
+      }
+
+    // Work of loads and supports (trapezoidal): the supports' reactions are
+    // r = f_int + M a − f_ext at the constrained dofs (zero elsewhere).
+    reaction_force = internal_force;
+    reaction_force += inertia_force;
+    reaction_force -= external_force;
+    TrilinosWrappers::MPI::Vector mean(external_force);
+    mean += external_force_old;
+    mean += reaction_force;
+    mean += reaction_force_old;
+    energy_audit.external_work += 0.5 * (mean * du);
+    mean = internal_force;
+    mean += internal_force_old;
+    energy_audit.internal_work += 0.5 * (mean * du);
+    energy_audit.stress_work += step_internal_work;
+    energy_audit.plastic_work += step_plastic_work;
+    energy_audit.elastic_energy = elastic_strain_energy();
 
     for (auto &p : points)
       if (p)
@@ -441,6 +678,8 @@ namespace anvil
     owned_old_solution = owned_solution;
     old_solution       = owned_solution;
     internal_force_old = internal_force;
+    external_force_old = external_force;
+    reaction_force_old = reaction_force;
   }
 
   template <int dim>
@@ -474,7 +713,8 @@ namespace anvil
               if (seen[k])
                 continue;
               seen[k] = true;
-              force[fe.system_to_component_index(i).first] += internal_force(g) - external_force(g);
+              force[fe.system_to_component_index(i).first] +=
+                internal_force(g) + inertia_force(g) - external_force(g);
             }
         }
     return Utilities::MPI::sum(force, mpi_communicator);

@@ -108,6 +108,11 @@ namespace anvil
     /// Stress at t_n (committed).
     virtual const dealii::SymmetricTensor<2, 3> &committed_stress() const = 0;
     virtual double equivalent_plastic_strain() const { return 0.; }
+    /// Equivalent plastic strain at t_n.
+    virtual double committed_equivalent_plastic_strain() const
+    {
+      return equivalent_plastic_strain();
+    }
 
     /// Set the committed stress (initial stress states).
     virtual void set_stress(const dealii::SymmetricTensor<2, 3> &stress) = 0;

@@ -23,6 +23,7 @@ namespace anvil
    *
    *   set Displacement = left: ux = 0, uy = 0; right: ux = 0.5*t
    *   set Pressure     = top: 10*min(t, 1)
+   *   set Velocity     = top: uy = -15278          (mm/s; the face is driven)
    *
    * Displacement components not named stay free. Pressure is a follower load
    * (it acts along the current normal, on the current area; positive pushes
@@ -52,12 +53,20 @@ namespace anvil
     };
 
     const std::vector<PrescribedDisplacement> &displacements() const { return prescribed; }
+    const std::vector<PrescribedDisplacement> &velocities() const { return prescribed_velocity; }
     const std::vector<Pressure>               &pressures() const { return pressure_loads; }
 
     /// Values of the prescribed displacement components at time @p t, per dof.
     void interpolate(const dealii::DoFHandler<dim>            &dof_handler,
                      double                                    t,
                      std::map<dealii::types::global_dof_index, double> &values) const;
+
+    /// Displacement increments over [t_old, t_new] of the velocity-driven
+    /// components: Δt (v(t_old) + v(t_new))/2 (exact for v linear in t).
+    void interpolate_velocity_increment(const dealii::DoFHandler<dim>                   &dof_handler,
+                                        double                                           t_old,
+                                        double                                           t_new,
+                                        std::map<dealii::types::global_dof_index, double> &increments) const;
 
     /// Zero constraints on every prescribed component (for Newton updates).
     void make_homogeneous_constraints(const dealii::DoFHandler<dim>     &dof_handler,
@@ -67,7 +76,7 @@ namespace anvil
     bool has_pressure() const { return !pressure_loads.empty(); }
 
   private:
-    std::vector<PrescribedDisplacement> prescribed;
+    std::vector<PrescribedDisplacement> prescribed, prescribed_velocity;
     std::vector<Pressure>               pressure_loads;
   };
 

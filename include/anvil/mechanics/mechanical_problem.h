@@ -46,6 +46,13 @@ namespace anvil
       bool         axisymmetric                 = false;
       bool         check_tangent                = false;
       double       temperature                  = 293;
+      // Implicit dynamics (generalized-α, Chung & Hulbert 1993).
+      bool         dynamic                      = false;
+      double       spectral_radius              = 1;
+      bool         lumped_mass                  = false;
+      std::string  gravity                      = "";
+      std::string  initial_velocity             = "";
+      double       maximum_plastic_increment    = 0; // 0: no limit
       unsigned int max_iterations               = 15;
       double       residual_tolerance           = 1e-8;
       double       absolute_residual_tolerance  = 1e-12;
@@ -103,10 +110,25 @@ namespace anvil
     /// Reaction force on the named boundary (force the support exerts on the body), N.
     dealii::Tensor<1, dim> reaction(dealii::types::boundary_id boundary) const;
 
-    /// Work of all external forces and supports (trapezoidal in time), N·mm.
-    double external_work() const { return work_external; }
-    /// ∫∫ σ : D dv dt (mid-point stress power), N·mm.
-    double internal_work() const { return work_internal; }
+    /// The energy audit, accumulated over accepted steps (N·mm).
+    struct Energy
+    {
+      double external_work  = 0; // loads and supports, trapezoidal in time
+      double internal_work  = 0; // ½(f_int,n + f_int,n+1) · Δu
+      double stress_work    = 0; // ∫ ½(σ_n + σ_n+1) : Δε dv½ (quadrature points)
+      double kinetic        = 0; // ½ vᵀ M v
+      double initial_kinetic = 0;
+      double plastic_work   = 0; // ∫∫ Ẇirr dv dt (eq. 21)
+      double elastic_energy = 0; // ∫ ½ σ : H⁻¹ : σ dv, from the stresses (a state function)
+      /// |W_ext − W_int − ΔK| relative to the largest of them.
+      double balance_error() const;
+    };
+    const Energy &energy() const { return energy_audit; }
+    /// Largest increment of equivalent plastic strain at a point in the last solve.
+    double largest_plastic_increment() const { return max_plastic_increment; }
+    bool   is_dynamic() const { return parameters.dynamic; }
+    /// Velocity (ghosted), dynamics only.
+    const dealii::TrilinosWrappers::MPI::Vector &velocity() const { return velocity_ghosted; }
 
     /// Averages per locally owned cell: stress components, von Mises, pressure, J, ε̄ᵖ.
     CellFields cell_fields() const;
@@ -136,6 +158,15 @@ namespace anvil
                                               double                        radius) const;
     std::string  material_failure_message() const;
     void make_axis_constraints(dealii::AffineConstraints<double> &constraints) const;
+    void setup_dynamics();
+    /// Row sums of the mass matrix (lumped mass), t = ρ ∫ N dV.
+    void lumped_mass(dealii::TrilinosWrappers::MPI::Vector &m) const;
+    /// ½ vᵀ M v with the scene's mass (consistent or lumped).
+    double kinetic_energy(const dealii::TrilinosWrappers::MPI::Vector &v) const;
+    /// ∫ ½ (p²/K + s:s/2G) dv over the current stresses (reference moduli).
+    double elastic_strain_energy() const;
+    /// a_{n+1} from u_{n+1} by Newmark: (u − uₙ − Δt vₙ)/(βΔt²) − (½ − β)/β aₙ.
+    double newmark_acceleration(double u, double u_old, double v_old, double a_old) const;
 
     MPI_Comm                                                 mpi_communicator;
     const dealii::parallel::distributed::Triangulation<dim> &triangulation;
@@ -166,7 +197,18 @@ namespace anvil
     // One material point per quadrature point of each locally owned cell,
     // indexed by active_cell_index * n_q_points + q.
     std::vector<std::unique_ptr<MaterialPoint>> points;
-    double step_internal_work = 0, work_internal = 0, work_external = 0;
+    double step_internal_work = 0, step_plastic_work = 0, max_plastic_increment = 0;
+    Energy energy_audit;
+    dealii::TrilinosWrappers::MPI::Vector external_force_old, reaction_force, reaction_force_old;
+
+    // Dynamics: generalized-α parameters, mass and the state at t_n.
+    double alpha_m = 0, alpha_f = 0, newmark_beta = 0.25, newmark_gamma = 0.5;
+    dealii::TrilinosWrappers::MPI::Vector velocity_old, acceleration_old; // owned
+    dealii::TrilinosWrappers::MPI::Vector velocity_ghosted, velocity_old_ghosted,
+      acceleration_old_ghosted;
+    dealii::TrilinosWrappers::MPI::Vector static_residual_old; // f_int,n − f_ext,n
+    dealii::TrilinosWrappers::MPI::Vector inertia_force;       // M a_{n+1}
+    dealii::Tensor<1, dim> gravity; // mm/s², body force ρ g
     double assembly_rate = 0;
     double current_time_step = 1, current_time = 0;
     std::string material_failure; // this rank's, from the last assembly
