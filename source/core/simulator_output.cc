@@ -166,6 +166,7 @@ namespace anvil
               columns.push_back(p.name + "_u" + "xyz"[d]);
             for (const auto *c : {"xx", "yy", "zz", "xy", "yz", "xz"})
               columns.push_back(p.name + "_stress_" + c);
+            columns.push_back(p.name + "_equivalent_plastic_strain");
           }
         probes_csv.open(output_dir + "/probes.csv", columns, root);
       }
@@ -198,10 +199,11 @@ namespace anvil
           {
             Tensor<1, dim>        u;
             SymmetricTensor<2, 3> s;
-            mechanical->probe(p.point, u, s);
+            double                eqps = 0;
+            mechanical->probe(p.point, u, s, eqps);
             for (unsigned int d = 0; d < dim; ++d)
               row.push_back(u[d]);
-            row.insert(row.end(), {s[0][0], s[1][1], s[2][2], s[0][1], s[1][2], s[0][2]});
+            row.insert(row.end(), {s[0][0], s[1][1], s[2][2], s[0][1], s[1][2], s[0][2], eqps});
           }
         probes_csv.add_row(row);
       }
@@ -271,9 +273,12 @@ namespace anvil
                                           [&](const Probe &p) { return p.name == q.target; });
             Tensor<1, dim>        u;
             SymmetricTensor<2, 3> s;
-            mechanical->probe(p.point, u, s);
+            double                eqps = 0;
+            mechanical->probe(p.point, u, s, eqps);
             if (q.field[0] == 'u' && q.field.size() == 2)
               value = u[q.component];
+            else if (q.field == "equivalent_plastic_strain")
+              value = eqps;
             else
               {
                 // The probe's cell average; evaluated from the stress tensor.

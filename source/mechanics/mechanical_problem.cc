@@ -772,10 +772,12 @@ namespace anvil
   template <int dim>
   bool MechanicalProblem<dim>::probe(const Point<dim>      &point,
                                      Tensor<1, dim>        &u,
-                                     SymmetricTensor<2, 3> &stress) const
+                                     SymmetricTensor<2, 3> &stress,
+                                     double                &plastic_strain) const
   {
-    u      = Tensor<1, dim>();
-    stress = SymmetricTensor<2, 3>();
+    u              = Tensor<1, dim>();
+    stress         = SymmetricTensor<2, 3>();
+    plastic_strain = 0;
     double found = 0;
     try
       {
@@ -795,7 +797,11 @@ namespace anvil
             u = values[0];
             const unsigned int n_q = quadrature.size();
             for (unsigned int k = 0; k < n_q; ++k)
-              stress += points[cell->active_cell_index() * n_q + k]->stress() / n_q;
+              {
+                stress += points[cell->active_cell_index() * n_q + k]->stress() / n_q;
+                plastic_strain +=
+                  points[cell->active_cell_index() * n_q + k]->equivalent_plastic_strain() / n_q;
+              }
           }
       }
     catch (...)
@@ -805,10 +811,12 @@ namespace anvil
     const double n = Utilities::MPI::sum(found, mpi_communicator);
     u              = Utilities::MPI::sum(u, mpi_communicator);
     stress         = Utilities::MPI::sum(stress, mpi_communicator);
+    plastic_strain = Utilities::MPI::sum(plastic_strain, mpi_communicator);
     if (n == 0)
       return false;
     u /= n;
     stress /= n;
+    plastic_strain /= n;
     return true;
   }
 

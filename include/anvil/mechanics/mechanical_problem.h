@@ -133,10 +133,12 @@ namespace anvil
     /// Averages per locally owned cell: stress components, von Mises, pressure, J, ε̄ᵖ.
     CellFields cell_fields() const;
 
-    /// Displacement and cell-average stress at a point of the reference mesh.
+    /// Displacement, cell-average stress and equivalent plastic strain at a
+    /// point of the reference mesh.
     bool probe(const dealii::Point<dim>      &point,
                dealii::Tensor<1, dim>        &displacement,
-               dealii::SymmetricTensor<2, 3> &stress) const;
+               dealii::SymmetricTensor<2, 3> &stress,
+               double                        &plastic_strain) const;
 
     /// |K δu − (R(u + hδu) − R(u − hδu))/2h| / |K δu| for a random δu at the
     /// current iterate: the finite-difference check of the tangent.
