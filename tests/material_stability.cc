@@ -16,11 +16,19 @@
 // m = 1..100; Perzyna η from 0 to 1e6 (η → 0 must reproduce J2 to 1e-10);
 // linear thermal softening up to and beyond θ = 0 (σᵥ ≤ 0 must be reported
 // as anvil::MaterialPointError), also with a temperature-dependent modulus;
-// near-incompressibility ν = 0.499.
+// a modulus temperature factor g(T) ≤ 0 alone (K, G ≤ 0 must be reported as
+// MaterialPointError naming the moduli); near-incompressibility ν = 0.499;
+// extreme Perzyna viscosity η = 1e6..1e12 MPa s^{1/m} with m = 20, 100, with
+// η independent of ε̄ (a = 0) and decreasing with it (a = −0.5), where the
+// root Δε̄* of the return map is 1e-59..1e-881: the test finds ln Δε̄* itself
+// by bisection in ln Δε̄ (no underflow) and requires convergence where
+// Δε̄* ≥ 1e-290, and either convergence or Δε̄ = 0 ("elastic to working
+// precision", the stress then checked against the criterion at Δε̄*) below.
 //
 // Passes if every case converged (≤ 200 return iterations) with criterion and
 // consistency residuals ≤ 1e-10, or failed with MaterialPointError exactly
-// where σᵥ ≤ 0, and η → 0 matched J2 to 1e-10.
+// where σᵥ ≤ 0 or K, G ≤ 0 (with a message naming the cause), and η → 0
+// matched J2 to 1e-10.
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/symmetric_tensor.h>
 
@@ -32,6 +40,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace dealii;
@@ -52,11 +61,13 @@ namespace
     double omega = 0, T_ref = 293;  // thermal softening of the yield stress (0: none)
     double omega_g = 0;             // modulus temperature factor g = 1 − ω_g (T − 293)
     double eta = 0, n = 1, m = 1;   // Perzyna
+    double a = 0, eps_eta = 0.05;   // η(ε̄) = η (1 + ε̄/ε_η)^a
     double dt = 1e-3;               // s
     double T  = 293;                // K
     char   type       = 'u';        // 'u' uniaxial strain, 's' pure shear
     double multiple   = 10;         // increment / yield strain σ0/E
     bool   compare_j2 = false;      // also run rate-independent J2 and compare
+    bool   report_root = false;     // print the return map's root (Perzyna)
 
     std::string input() const
     {
@@ -78,7 +89,8 @@ namespace
       if (perzyna)
         s << "subsection Viscosity\n subsection Eta\n  set Value = " << eta
           << "\n end\n subsection n\n  set Value = " << n << "\n end\n subsection m\n  set Value = "
-          << m << "\n end\nend\n";
+          << m << "\n end\n set Strain exponent = " << a << "\n set Strain reference = " << eps_eta
+          << "\nend\n";
       return s.str();
     }
 
@@ -89,7 +101,30 @@ namespace
     double yield(const double eps) const { return theta() * (sigma0 + h * eps); }
     double overstress(const double dp) const
     {
-      return perzyna && eta > 0 && dp > 0 ? std::pow(eta, 1 / n) * std::pow(dp / dt, 1 / m) : 0.;
+      return perzyna && eta > 0 && dp > 0 ?
+               std::pow(eta * std::pow(1 + dp / eps_eta, a), 1 / n) * std::pow(dp / dt, 1 / m) :
+               0.;
+    }
+    /// The same in terms of x = ln Δε̄ (Δε̄ may be far below the smallest double).
+    double overstress_log(const double x) const
+    {
+      const double dp = std::exp(x); // 0 if it underflows: then 1 + dp/ε_η = 1
+      return perzyna && eta > 0 ?
+               std::exp((std::log(eta) + a * std::log1p(dp / eps_eta)) / n + (x - std::log(dt)) / m) :
+               0.;
+    }
+    /// ln Δε̄* of the Perzyna return map q_trial − 3GΔε̄ − σᵥ(Δε̄) − V(Δε̄) = 0 by
+    /// bisection in x = ln Δε̄ on [−1e5, ln(q_trial/3G)].
+    double log_root(const double q_trial) const
+    {
+      auto r = [&](const double x) {
+        const double dp = std::exp(x);
+        return q_trial - 3 * G() * dp - yield(dp) - overstress_log(x);
+      };
+      double lo = -1e5, hi = std::log(q_trial / (3 * G()));
+      for (unsigned int i = 0; i < 200 && hi - lo > 1e-15 * std::abs(hi); ++i)
+        (r(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+      return 0.5 * (lo + hi);
     }
     SymmetricTensor<2, 3> increment() const
     {
@@ -136,6 +171,9 @@ namespace
 
   unsigned int n_cases = 0, n_passed = 0, n_expected_errors = 0;
 
+  /// Below this root (ln) the update may return Δε̄ = 0: elastic to working precision.
+  const double log_working_precision = std::log(1e-290);
+
   void header(const std::string &title)
   {
     std::cout << "\n" << title << "\n";
@@ -146,7 +184,11 @@ namespace
   void check(const std::string &name, const std::string &parameters, const Parameters &p)
   {
     ++n_cases;
-    const bool expect_error = !(p.yield(0) > 0);
+    // Expected clear errors: K, G ≤ 0 (checked first), else σᵥ ≤ 0.
+    const bool moduli_error = !(p.G() > 0 && p.K() > 0);
+    const bool expect_error = moduli_error || !(p.yield(0) > 0);
+    const std::string expected_cause  = moduli_error ? "K, G <= 0" : "sigma_v <= 0";
+    const std::string expected_phrase = moduli_error ? "elastic moduli are not positive" : "yield stress";
 
     // q_trial = √(3/2)|dev(H:Δε)| with H = K δ⊗δ + 2G I_dev at T.
     const SymmetricTensor<2, 3> I       = unit_symmetric_tensor<3>();
@@ -173,12 +215,16 @@ namespace
 
     if (!error.empty())
       {
-        const bool ok = expect_error && !other_exception;
+        const bool ok =
+          expect_error && !other_exception && error.find(expected_phrase) != std::string::npos;
         n_expected_errors += ok;
         n_passed += ok;
         std::printf("%-26s %-34s %5s %5s %11s %10s %9s %9s %9s %4s\n", name.c_str(),
                     parameters.c_str(), "-", "error", "-", "-", "-", "-", "-", ok ? "yes" : "NO");
-        std::cout << "    " << (ok ? "expected clear error (sigma_v <= 0): " : "UNEXPECTED: ")
+        std::cout << "    "
+                  << (ok ? "expected clear error (" + expected_cause + "): " :
+                      expect_error ? "UNCLEAR (expected " + expected_cause + "): " :
+                                     "UNEXPECTED: ")
                   << error << "\n";
         return;
       }
@@ -186,10 +232,16 @@ namespace
     const double sigma = von_mises(r.stress);
     const double dp    = r.equivalent_plastic_strain;
     const double Y     = p.yield(dp);
+    // Perzyna: the root of the return map in ln Δε̄, found by the test.
+    const double x_root = p.perzyna && plastic ? p.log_root(q_trial) : 0.;
+    // Δε̄ = 0 in the plastic branch where the root is below working precision.
+    const bool   underflow = p.perzyna && plastic && !(dp > 0) && x_root < log_working_precision;
     double       criterion;
     if (dp > 0)
       criterion = p.perzyna ? std::abs(sigma - Y - p.overstress(dp)) / sigma :
                               std::abs(sigma - Y) / Y;
+    else if (underflow) // the generalized criterion at the true root
+      criterion = std::abs(sigma - p.yield(std::exp(x_root)) - p.overstress_log(x_root)) / sigma;
     else // elastic branch: the criterion must not be violated (f ≤ 0)
       criterion = std::max(sigma - Y, 0.) / Y;
     const double consistency = std::abs(sigma - (q_trial - 3 * p.G() * dp)) / sigma;
@@ -205,19 +257,27 @@ namespace
     const bool must_match = p.compare_j2 && p.eta <= 1e-12;
 
     bool ok = !expect_error && r.return_iterations <= max_iter && criterion <= tolerance &&
-              consistency <= tolerance && (dp > 0) == plastic;
+              consistency <= tolerance && ((dp > 0) == plastic || underflow);
     if (must_match)
       ok = ok && difference <= tolerance;
     n_passed += ok;
 
     std::printf("%-26s %-34s %5u %5s %11.5e %10.4e %9.2e %9.2e %9s %4s\n", name.c_str(),
-                parameters.c_str(), r.return_iterations, dp > 0 ? "yes" : "elast",
+                parameters.c_str(), r.return_iterations, dp > 0 ? "yes" : underflow ? "e.w.p" : "elast",
                 sigma, dp, criterion, consistency,
                 difference < 0 ? "-" : number(difference, "%.2e").c_str(), ok ? "yes" : "NO");
+    if (p.report_root && p.perzyna && plastic)
+      std::cout << "    root dp* = 10^" << number(x_root / std::log(10.), "%.2f") << ": "
+                << (dp > 0 ? "converged to dp = " + number(dp) + " in " +
+                               std::to_string(r.return_iterations) + " iterations" :
+                    underflow ? std::string("below working precision, returned elastic (dp = 0, ") +
+                                  std::to_string(r.return_iterations) + " iterations)" :
+                                std::string("returned dp = 0 but dp* is representable"))
+                << "\n";
     if (expect_error)
-      std::cout << "    FAILED: sigma_v(0, T) = " << p.yield(0)
-                << " MPa <= 0 but the update did not throw MaterialPointError\n";
-    else if ((dp > 0) != plastic)
+      std::cout << "    FAILED: " << expected_cause
+                << " but the update did not throw MaterialPointError\n";
+    else if ((dp > 0) != plastic && !underflow)
       std::cout << "    FAILED: wrong branch (q_trial = " << q_trial
                 << ", sigma_v = " << p.yield(0) << ")\n";
     else if (!ok)
@@ -321,9 +381,51 @@ int main()
               perzyna ? "eta=100 n=1 m=10 dt=1e-3" : "s0=250 h=1000", p);
       }
 
+  header("6. Modulus temperature factor alone g = 1 - 2e-3 (T - 293), 10x pure shear (g = 0 at 793 "
+         "K: K, G <= 0 must be a clear error)");
+  for (const bool perzyna : {false, true})
+    for (const double T : {293., 700., 793., 900.})
+      {
+        Parameters p;
+        p.perzyna  = perzyna;
+        p.eta      = 100;
+        p.m        = 5;
+        p.omega_g  = 2e-3;
+        p.T        = T;
+        p.type     = 's';
+        p.multiple = 10;
+        check(std::string(perzyna ? "Perzyna" : "J2") + " T=" + number(T, "%g") + " g only",
+              "g=" + number(1 - 2e-3 * (T - 293), "%.3g") + (perzyna ? " eta=100 m=5" : ""), p);
+      }
+
+  header("7. Extreme Perzyna viscosity, n = 1, dt = 1e-3 s, 10x uniaxial strain; eta(eps) = eta (1 + "
+         "eps/0.05)^a\n   (e.w.p.: the root dp* underflows, returned elastic to working precision; "
+         "crit.res then at dp*)");
+  // a = -0.5: eta falls with eps (the rate law bounds the root with eta at the largest eps);
+  // h < 0: sigma_v falls (no bound from the rate law: the iteration alone).
+  for (const auto &[a, h] : std::vector<std::pair<double, double>>{{0., 1000.}, {-0.5, 1000.}, {0., -1000.}})
+    for (const double m : {20., 100.})
+      for (const double eta : {1e6, 1e9, 1e12})
+        {
+          Parameters p;
+          p.perzyna     = true;
+          p.eta         = eta;
+          p.m           = m;
+          p.a           = a;
+          p.h           = h;
+          p.multiple    = 10;
+          p.report_root = true;
+          check("Perzyna " + number(eta, "%g") + " m=" + number(m, "%g") + (a < 0 ? " a<0" : "") +
+                  (h < 0 ? " h<0" : ""),
+                "eta=" + number(eta, "%g") + " n=1 m=" + number(m, "%g") + " a=" + number(a, "%g") +
+                  " h=" + number(h, "%g"),
+                p);
+        }
+
   const bool ok = n_passed == n_cases;
   std::cout << "\n"
             << (ok ? "PASS" : "FAIL") << ": " << n_passed << " of " << n_cases << " cases ok ("
-            << n_expected_errors << " expected clear errors where sigma_v <= 0)" << std::endl;
+            << n_expected_errors << " expected clear errors where sigma_v <= 0 or K, G <= 0)"
+            << std::endl;
   return ok ? 0 : 1;
 }

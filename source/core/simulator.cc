@@ -40,7 +40,7 @@ namespace anvil
                       "Largest step the re-growth may reach, s; 0 means Time step.");
     prm.declare_entry("Growth factor", "1.5", Patterns::Double(1),
                       "Factor by which the step grows after an easy step (dimensionless).");
-    prm.declare_entry("Easy step iterations", "4", Patterns::Integer(0),
+    prm.declare_entry("Easy step iterations", "5", Patterns::Integer(0),
                       "A step that converged in at most this many Newton iterations is easy.");
     prm.leave_subsection();
 

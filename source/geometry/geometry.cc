@@ -7,6 +7,7 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/grid/tria_description.h>
 
+#include <anvil/core/expression.h>
 #include <anvil/core/scene.h>
 #include <anvil/geometry/geometry.h>
 
@@ -362,6 +363,12 @@ namespace anvil
                       "faces axis, side, bottom, top) or gmsh (a .msh file, see Mesh file).");
     prm.declare_entry("Global refinements", "0", Patterns::Integer(0),
                       "Number of times every cell of the coarse mesh is split in 2^dim.");
+    prm.declare_entry("Transformation", "", Patterns::Anything(),
+                      "Map every vertex of the refined mesh to new coordinates: dim "
+                      "','-separated muparser expressions in x, y (, z), e.g. a bar tapered "
+                      "towards y = 0: 'x*(0.982 + 0.018*y/26.667), y'. Empty: none. Boundary "
+                      "and body names are kept; curved boundaries follow the formula, not "
+                      "their original shape, under further refinement.");
     prm.declare_entry("Random distortion", "0", Patterns::Double(0, 0.4),
                       "Move interior vertices of the coarse mesh at random by up to this fraction of "
                       "the adjacent edge length (dimensionless, 0 to 0.4); for patch tests. The "
@@ -404,6 +411,17 @@ namespace anvil
     type                  = prm.get("Type");
     global_refinements    = prm.get_integer("Global refinements");
     random_distortion     = prm.get_double("Random distortion");
+    transformation.clear();
+    const std::string transformation_text = prm.get("Transformation");
+    if (!trim(transformation_text).empty())
+      {
+        const auto parts = split_outside_parentheses(transformation_text, ',');
+        if (parts.size() != dim)
+          scene.fail("Geometry/Transformation", "= '" + transformation_text + "': expected " +
+                                                  std::to_string(dim) + " ','-separated expressions");
+        for (const auto &p : parts)
+          transformation.push_back(parse_expression<dim>(p, scene, "Geometry/Transformation"));
+      }
     body_name             = trim(prm.get("Body name"));
     inner_radius          = prm.get_double("Inner radius");
     outer_radius          = prm.get_double("Outer radius");
@@ -546,6 +564,15 @@ namespace anvil
       if (id != numbers::flat_manifold_id)
         triangulation.set_manifold(id, serial.get_manifold(id));
     triangulation.refine_global(global_refinements);
+    if (!transformation.empty())
+      GridTools::transform(
+        [this](const Point<dim> &p) {
+          Point<dim> q;
+          for (unsigned int d = 0; d < dim; ++d)
+            q[d] = transformation[d]->value(p);
+          return q;
+        },
+        triangulation);
   }
 
   template <int dim>

@@ -1,7 +1,9 @@
 #include <anvil/core/scene.h>
 #include <anvil/material/j2_plasticity.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace anvil
@@ -60,30 +62,73 @@ namespace anvil
       scene.fail(p + "/Strain reference", "must be > 0");
   }
 
-  PerzynaLaw::Value PerzynaLaw::evaluate(const double eps, const double dp, const double dt,
-                                         const double T) const
+  PerzynaLaw::Rate PerzynaLaw::at(const double T, const double dt) const
+  {
+    Rate r;
+    r.dt = dt;
+    if (!enabled)
+      return r;
+    const double eta_T = eta.value(T);
+    if (!(eta_T > 0))
+      return r; // η_T ≤ 0: no overstress, rate-independent J2
+    const double nT = n.value(T), mT = m.value(T);
+    r.inv_n        = 1 / nT;
+    r.m            = mT;
+    r.inv_m        = 1 / mT;
+    r.eta_root     = nT == 1 ? eta_T : std::pow(eta_T, r.inv_n);
+    r.strain_power = strain_exponent * r.inv_n;
+    return r;
+  }
+
+  PerzynaLaw::Value PerzynaLaw::evaluate(const Rate &r, const double eps, const double dp) const
   {
     Value v;
-    const double eta_T = eta.value(T);
-    if (!enabled || eta_T <= 0 || dp <= 0)
+    if (!r.active() || !(dp > 0))
       {
         // The derivative at dp = 0 is infinite for m > 1; callers keep dp > 0.
         return v;
       }
-    const double nT = n.value(T), mT = m.value(T);
-    const double g    = std::pow(1 + eps / strain_reference, strain_exponent);
-    const double e    = eta_T * g; // η(ε̄, T)
-    const double rate = dp / dt;
-    v.stress          = std::pow(e, 1 / nT) * std::pow(rate, 1 / mT);
+    // η(ε̄, T)^{1/n} = η_T^{1/n} (1 + ε̄/ε_η)^{a/n} and its logarithmic derivative in ε̄.
+    double c = r.eta_root, dlnc = 0;
+    if (strain_exponent != 0)
+      {
+        c *= std::pow(1 + eps / strain_reference, r.strain_power);
+        dlnc = r.strain_power / (strain_reference + eps);
+      }
+    const double rate = dp / r.dt;
+    v.stress          = c * (r.inv_m == 1 ? rate : std::pow(rate, r.inv_m));
     // d/dΔε̄: the rate term and η's dependence on ε̄ = ε̄_n + Δε̄.
-    const double dlng = strain_exponent / (strain_reference + eps);
-    v.derivative      = v.stress * (1 / (mT * dp) + dlng / nT);
-    // ∂/∂T of ln V = (1/n) ln η − (1/m) ... with n(T), m(T), η(T).
-    const double dlnV = eta.derivative(T) / (eta_T * nT) -
-                        n.derivative(T) / (nT * nT) * std::log(e) -
-                        m.derivative(T) / (mT * mT) * std::log(rate);
-    v.temperature_derivative = v.stress * dlnV;
+    v.log_derivative = v.stress * (r.inv_m + dp * dlnc);
+    v.derivative     = v.stress * (r.inv_m / dp + dlnc);
     return v;
+  }
+
+  double PerzynaLaw::temperature_derivative(const Rate  &r,
+                                            const double T,
+                                            const double eps,
+                                            const double dp,
+                                            const double stress) const
+  {
+    if (!r.active() || !(dp > 0))
+      return 0;
+    // ∂/∂T of ln V = (1/n) ln η − (1/m) ... with n(T), m(T), η(T).
+    const double eta_T = eta.value(T);
+    double       dlnV  = eta.derivative(T) / eta_T * r.inv_n;
+    if (const double dn = n.derivative(T); dn != 0)
+      dlnV -= dn * r.inv_n * r.inv_n *
+              std::log(eta_T * std::pow(1 + eps / strain_reference, strain_exponent));
+    if (const double dm = m.derivative(T); dm != 0)
+      dlnV -= dm * r.inv_m * r.inv_m * std::log(dp / r.dt);
+    return stress * dlnV;
+  }
+
+  double PerzynaLaw::rate_bound(const Rate &r, const double eps, const double overstress) const
+  {
+    double c = r.eta_root;
+    if (strain_exponent != 0)
+      c *= std::pow(1 + eps / strain_reference, r.strain_power);
+    const double x = overstress / c;
+    return r.dt * (r.m == 1 ? x : std::pow(x, r.m));
   }
 
   // ---------------------------------------------------------------- J2Model
@@ -159,6 +204,7 @@ namespace anvil
       const SymmetricTensor<2, 3> &stress() const override { return current; }
       const SymmetricTensor<2, 3> &committed_stress() const override { return stress_n; }
       double equivalent_plastic_strain() const override { return eps_c; }
+      double committed_equivalent_plastic_strain() const override { return eps_n; }
       void   set_stress(const SymmetricTensor<2, 3> &s) override { stress_n = current = s; }
 
       std::vector<double> save_state() const override
@@ -184,72 +230,240 @@ namespace anvil
     private:
       void compute(const MaterialIncrement &inc, double T, double dT, MaterialRequest request,
                    MaterialResponse &response);
-      /// Δε̄ solving r(Δε̄) = q_tr − 3GΔε̄ − σᵥ(ε̄ₙ + Δε̄) − V(Δε̄) = 0.
-      double return_map(double q_tr, double G, double T, double dt, unsigned int &iterations) const;
+      /// Δε̄ solving r(Δε̄) = q_tr − 3GΔε̄ − σᵥ(ε̄ₙ + Δε̄) − V(Δε̄) = 0 (0: the root
+      /// is below working precision), with σᵥ and V at the returned Δε̄ in @p Y and
+      /// @p V. @p Y0 is σᵥ at ε̄ₙ.
+      double return_map(double                     q_tr,
+                        double                     G,
+                        double                     T,
+                        const PerzynaLaw::Rate    &rate,
+                        const HardeningLaw::Value &Y0,
+                        unsigned int              &iterations,
+                        HardeningLaw::Value       &Y,
+                        PerzynaLaw::Value         &V) const;
 
       const J2Model        &model;
       SymmetricTensor<2, 3> stress_n, current;
       double                eps_n = 0, eps_c = 0;
     };
 
-    double J2Point::return_map(const double q_tr, const double G, const double T, const double dt,
-                               unsigned int &iterations) const
+    MaterialPointError no_plastic_solution(const double T)
     {
-      auto residual = [&](const double dp, double &slope) {
-        const auto Y = model.hardening.evaluate(eps_n + dp, T);
-        const auto V = model.viscosity.evaluate(eps_n + dp, dp, dt, T);
-        slope        = -3 * G - Y.slope - V.derivative;
-        return q_tr - 3 * G * dp - Y.stress - V.stress;
+      return MaterialPointError("no plastic solution: the yield stress is not positive after "
+                                "the increment (T = " + std::to_string(T) + " K)");
+    }
+
+    double J2Point::return_map(const double               q_tr,
+                               const double               G,
+                               const double               T,
+                               const PerzynaLaw::Rate    &rate,
+                               const HardeningLaw::Value &Y0,
+                               unsigned int              &iterations,
+                               HardeningLaw::Value       &Y,
+                               PerzynaLaw::Value         &V) const
+    {
+      const HardeningLaw &hardening = model.hardening;
+      const PerzynaLaw   &viscosity = model.viscosity;
+      // r and rx = Δε̄ r'(Δε̄) = dr/d ln Δε̄ (finite where r' is not: V ∝ Δε̄^{1/m}),
+      // with σᵥ and V at Δε̄ in y and v.
+      auto residual = [&](const double dp, double &rx, HardeningLaw::Value &y, PerzynaLaw::Value &v) {
+        y  = hardening.evaluate(eps_n + dp, T);
+        v  = viscosity.evaluate(rate, eps_n + dp, dp);
+        rx = -(3 * G + y.slope) * dp - v.log_derivative;
+        return q_tr - 3 * G * dp - y.stress - v.stress;
+      };
+      auto elastic = [&]() {
+        Y = Y0;
+        V = PerzynaLaw::Value();
+        return 0.;
       };
       // The root is bracketed by [0, q_tr/3G]: r(0) > 0 (plastic branch) and
-      // r(q_tr/3G) = −σᵥ − V < 0 while the yield stress is positive.
-      double lo = 0, hi = q_tr / (3 * G), slope = 0;
-      if (residual(hi, slope) > 0)
-        throw MaterialPointError("no plastic solution: the yield stress is not positive after "
-                                 "the increment (T = " + std::to_string(T) + " K)");
-      const auto Y0 = model.hardening.evaluate(eps_n, T);
-      double     dp = std::min(0.5 * hi, (q_tr - Y0.stress) / (3 * G + std::max(Y0.slope, 0.)));
+      // r(q_tr/3G) = −σᵥ − V < 0 while the yield stress is positive, which
+      // only needs checking if σᵥ may decrease.
+      double     hi = q_tr / (3 * G), rx = 0;
+      const bool nondecreasing = hardening.is_nondecreasing(T);
+      iterations               = 0;
+      if (!nondecreasing && residual(hi, rx, Y, V) > 0)
+        throw no_plastic_solution(T);
+      const double hi_safe = hi;
+      // Below dp_min the plastic increment is zero to working precision.
+      const double dp_min = std::max(1e-300 * hi, std::numeric_limits<double>::min());
+      double dp = std::min(0.5 * hi, (q_tr - Y0.stress) / (3 * G + std::max(Y0.slope, 0.)));
+      // With σᵥ nondecreasing, V(root) ≤ q_tr − σᵥ(ε̄ₙ), and V(Δε̄) ≥ η_min^{1/n}
+      // (Δε̄/Δt)^{1/m} with η_min the smallest η(ε̄) on the bracket (at ε̄ₙ for
+      // a ≥ 0, at ε̄ₙ + q_tr/3G for a < 0): the rate law bounds the root, by
+      // many orders of magnitude for η ≫ 1, m ≫ 1. The root is then close to
+      // the bound (the overstress takes almost all of q_tr − σᵥ): start there.
+      if (rate.active() && nondecreasing)
+        {
+          const double eps_min = viscosity.strain_exponent_value() >= 0 ? eps_n : eps_n + hi;
+          const double bound   = viscosity.rate_bound(rate, eps_min, q_tr - Y0.stress);
+          if (!(bound > dp_min))
+            return elastic();
+          if (bound < dp)
+            dp = hi = bound;
+        }
+      double       lo        = 0;
       const double tolerance = 1e-13 * q_tr;
       for (iterations = 1; iterations <= 200; ++iterations)
         {
-          const double r = residual(dp, slope);
+          const double r = residual(dp, rx, Y, V);
           if (std::abs(r) <= tolerance)
             return dp;
           (r > 0 ? lo : hi) = dp;
-          double next = dp - r / slope;
-          // Safeguard: stay inside the bracket, else bisect (steep rate terms, m ≫ 1).
-          if (!(next > lo && next < hi) || !std::isfinite(next))
-            next = 0.5 * (lo + hi);
-          if (std::abs(next - dp) <= 1e-16 * std::max(dp, 1e-300) || hi - lo <= 1e-16 * hi)
-            return next;
+          if (!(lo < hi)) // r > 0 at the rate bound (by rounding): the root is just above
+            hi = hi_safe;
+          // Newton; right of the root (r < 0), also Newton in x = ln Δε̄ on
+          // g(x) = ln(A/V) = 0, A = q_tr − 3GΔε̄ − σᵥ = r + V, which is exact where the
+          // overstress is a power of Δε̄ and A constant (η ≫ 1: V ≫ 3GΔε̄) and does
+          // not overshoot (g is concave for linear hardening), where plain Newton
+          // only creeps (m < 1: Δε̄ ← (1 − m) Δε̄); the longer step inside the
+          // bracket wins. Where Newton leaves the bracket, Newton in x (on g, or
+          // on r if A ≤ 0); then bisection in x.
+          const double A      = r + V.stress;
+          const bool   loglog = A > 0 && V.stress > 0;
+          auto         newton_x = [&]() {
+            return loglog ? dp * std::exp(-std::log(A / V.stress) /
+                                          ((rx + V.log_derivative) / A - V.log_derivative / V.stress)) :
+                            dp * std::exp(-r / rx);
+          };
+          double next = dp - dp * r / rx;
+          if (r < 0 && loglog)
+            if (const double x_step = newton_x(); x_step > lo && !(next > lo && next < x_step))
+              next = x_step;
+          bool bisect = false;
+          if (!(next > lo && next < hi))
+            {
+              next   = newton_x();
+              bisect = !(next > lo && next < hi);
+            }
+          if (bisect || next < dp_min)
+            {
+              // While lo = 0, bisect from dp_min, once it is known that r(dp_min) > 0:
+              // else the root is below working precision.
+              if (lo < dp_min)
+                {
+                  ++iterations;
+                  HardeningLaw::Value y;
+                  PerzynaLaw::Value   v;
+                  double              rx_min;
+                  if (residual(dp_min, rx_min, y, v) <= 0)
+                    return elastic();
+                  lo = dp_min;
+                }
+              next = std::sqrt(lo) * std::sqrt(hi); // no underflow
+            }
+          if (std::abs(next - dp) <= 1e-16 * dp || hi - lo <= 1e-16 * hi)
+            return dp;
           dp = next;
         }
       throw MaterialPointError("the return map did not converge in 200 iterations");
     }
 
+    // The unrolled (raw) storage of SymmetricTensor<2,3> is 00, 11, 22, 01, 02, 12,
+    // that of SymmetricTensor<4,3> the 6x6 matrix of components C_{(ij)(kl)} in
+    // that order, row by row (deal.II's contractions weigh the off-diagonal
+    // pairs themselves). In that storage I_dev has 2/3, −1/3 in the normal
+    // block and 1/2 on the shear diagonal, δ⊗δ ones in the normal block, and
+    // I_sym 1, 1/2 on the diagonal.
+
+    /// C = K δ⊗δ + c_d I_dev (+ c_n n⊗n if @p with_n), raw storage.
+    template <bool with_n>
+    inline void fill_tangent(double *C, const double K, const double cd, const double cn,
+                             const double *n)
+    {
+      auto nn = [&](const unsigned int p, const unsigned int q) {
+        return with_n ? cn * n[p] * n[q] : 0.;
+      };
+      for (unsigned int p = 0; p < 3; ++p)
+        {
+          for (unsigned int q = 0; q < 3; ++q)
+            C[6 * p + q] = K + cd * ((p == q ? 1. : 0.) - 1. / 3) + nn(p, q);
+          for (unsigned int q = 3; q < 6; ++q)
+            C[6 * p + q] = nn(p, q);
+        }
+      for (unsigned int p = 3; p < 6; ++p)
+        {
+          for (unsigned int q = 0; q < 3; ++q)
+            C[6 * p + q] = nn(p, q);
+          for (unsigned int q = 3; q < 6; ++q)
+            C[6 * p + q] = (p == q ? 0.5 * cd : 0.) + nn(p, q);
+        }
+    }
+
+    /// S = I_sym − b n⊗n − a (I_dev − n⊗n) = I_sym − a I_dev + (a − b) n⊗n, raw storage.
+    inline void fill_sensitivity(double *S, const double a, const double b, const double *n)
+    {
+      const double c = a - b;
+      for (unsigned int p = 0; p < 3; ++p)
+        {
+          for (unsigned int q = 0; q < 3; ++q)
+            S[6 * p + q] = (p == q ? 1. - a * (2. / 3) : a * (1. / 3)) + c * n[p] * n[q];
+          for (unsigned int q = 3; q < 6; ++q)
+            S[6 * p + q] = c * n[p] * n[q];
+        }
+      for (unsigned int p = 3; p < 6; ++p)
+        {
+          for (unsigned int q = 0; q < 3; ++q)
+            S[6 * p + q] = c * n[p] * n[q];
+          for (unsigned int q = 3; q < 6; ++q)
+            S[6 * p + q] = (p == q ? 0.5 * (1 - a) : 0.) + c * n[p] * n[q];
+        }
+    }
+
     void J2Point::compute(const MaterialIncrement &inc, const double T, const double dT,
                           const MaterialRequest request, MaterialResponse &response)
     {
-      const ElasticLaw           &el   = model.elastic;
-      const double                K    = el.bulk_modulus(T);
-      const double                G    = el.shear_modulus(T);
-      const double                beta = el.thermal_expansion;
-      static const SymmetricTensor<2, 3> I = unit_symmetric_tensor<3>();
+      const ElasticLaw &el   = model.elastic;
+      const double      K    = el.bulk_modulus(T);
+      const double      G    = el.shear_modulus(T);
+      const double      beta = el.thermal_expansion;
+      if (!(G > 0 && K > 0))
+        throw MaterialPointError(
+          "the elastic moduli are not positive at T = " + std::to_string(T) +
+          " K (modulus temperature factor g(T) = " +
+          std::to_string(el.shear_modulus() > 0 ? G / el.shear_modulus() : K / el.bulk_modulus()) +
+          ")");
 
-      // Trial state: rotated σ_n plus H(T) : (Δε − βΔT I), eq. (9), (10), (19).
-      const Tensor<2, 3> &R = inc.rotation_increment;
-      const SymmetricTensor<2, 3> rotated =
-        symmetrize(R * Tensor<2, 3>(stress_n) * transpose(R));
-      const SymmetricTensor<2, 3> de      = inc.strain_increment - beta * dT * I;
-      const double                tr_de   = trace(de);
-      const SymmetricTensor<2, 3> trial   = rotated + K * tr_de * I + 2 * G * deviator(de);
-      const SymmetricTensor<2, 3> s_trial = deviator(trial);
-      const double                norm_s  = s_trial.norm();
-      const double                q_trial = std::sqrt(1.5) * norm_s;
+      // Trial state: rotated σ_n plus H(T) : (Δε − βΔT I), eq. (9), (10), (19),
+      // on the raw components (00, 11, 22, 01, 02, 12).
+      static constexpr unsigned int row[6] = {0, 1, 2, 0, 0, 1}, col[6] = {0, 1, 2, 1, 2, 2};
+      const Tensor<2, 3> &R  = inc.rotation_increment;
+      const double       *sn = stress_n.begin_raw();
+      double              trial[6];
+      {
+        // σ̃ = ΔR σ_n ΔRᵀ; σ_n as a full matrix, A = ΔR σ_n, σ̃_ij = A_il ΔR_jl.
+        const double S[3][3] = {{sn[0], sn[3], sn[4]}, {sn[3], sn[1], sn[5]}, {sn[4], sn[5], sn[2]}};
+        double       A[3][3];
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int l = 0; l < 3; ++l)
+            A[i][l] = R[i][0] * S[0][l] + R[i][1] * S[1][l] + R[i][2] * S[2][l];
+        for (unsigned int c = 0; c < 6; ++c)
+          {
+            const unsigned int i = row[c], j = col[c];
+            trial[c] = A[i][0] * R[j][0] + A[i][1] * R[j][1] + A[i][2] * R[j][2];
+          }
+      }
+      const double *dstrain = inc.strain_increment.begin_raw();
+      double        de[6];
+      for (unsigned int c = 0; c < 6; ++c)
+        de[c] = dstrain[c] - (c < 3 ? beta * dT : 0.);
+      const double tr_de   = de[0] + de[1] + de[2];
+      const double mean_de = tr_de / 3;
+      for (unsigned int c = 0; c < 6; ++c)
+        trial[c] += c < 3 ? K * tr_de + 2 * G * (de[c] - mean_de) : 2 * G * de[c];
+      const double mean_trial = (trial[0] + trial[1] + trial[2]) / 3;
+      double       s[6]; // dev(trial)
+      for (unsigned int c = 0; c < 6; ++c)
+        s[c] = c < 3 ? trial[c] - mean_trial : trial[c];
+      const double norm_s = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2] +
+                                      2 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
+      const double q_trial = std::sqrt(1.5) * norm_s;
 
-      double                dp = 0, H = 0;
-      HardeningLaw::Value   Y, Y_start;
-      PerzynaLaw::Value     V;
+      double              dp = 0, H = 0;
+      HardeningLaw::Value Y, Y_start;
+      PerzynaLaw::Value   V;
+      PerzynaLaw::Rate    rate;
       response.return_iterations = 0;
       if (model.plastic)
         {
@@ -260,40 +474,68 @@ namespace anvil
                                      " K (thermal softening removed all strength)");
           if (q_trial > Y.stress)
             {
-              dp = return_map(q_trial, G, T, inc.time_step, response.return_iterations);
-              Y  = model.hardening.evaluate(eps_n + dp, T);
-              V  = model.viscosity.evaluate(eps_n + dp, dp, inc.time_step, T);
-              H  = Y.slope + V.derivative;
+              rate = model.viscosity.at(T, inc.time_step);
+              if (model.hardening.is_linear() && !rate.active())
+                {
+                  // Linear hardening, rate-independent: r is linear in Δε̄.
+                  const double h = Y_start.slope;
+                  if (!(h >= 0))
+                    {
+                      const double hi = q_trial / (3 * G);
+                      if (q_trial - 3 * G * hi - model.hardening.evaluate(eps_n + hi, T).stress > 0)
+                        throw no_plastic_solution(T);
+                    }
+                  dp                         = (q_trial - Y_start.stress) / (3 * G + h);
+                  response.return_iterations = 1;
+                  if (request & request_temperature_derivative)
+                    Y = model.hardening.evaluate(eps_n + dp, T);
+                  else
+                    Y.stress = Y_start.stress + h * dp;
+                }
+              else
+                dp = return_map(q_trial, G, T, rate, Y_start, response.return_iterations, Y, V);
+              H = Y.slope + V.derivative;
             }
         }
 
-      const SymmetricTensor<2, 3> n = norm_s > 0 ? s_trial / norm_s : SymmetricTensor<2, 3>();
-      current = trial - std::sqrt(6.) * G * dp * n; // radial return
+      // Radial return: σ = trial − √6 G Δε̄ n, n = s/|s|.
+      double n[6];
+      {
+        const double inv_norm = norm_s > 0 ? 1 / norm_s : 0.;
+        for (unsigned int c = 0; c < 6; ++c)
+          n[c] = s[c] * inv_norm;
+      }
+      double *sigma = response.stress.begin_raw();
+      if (dp > 0)
+        {
+          const double radial = std::sqrt(6.) * G * dp;
+          for (unsigned int c = 0; c < 6; ++c)
+            sigma[c] = trial[c] - radial * n[c];
+        }
+      else
+        for (unsigned int c = 0; c < 6; ++c)
+          sigma[c] = trial[c];
+      current = response.stress;
       eps_c   = eps_n + dp;
-
-      response.stress                    = current;
       response.equivalent_plastic_strain = eps_c;
 
       if (request & request_tangent)
         {
-          // Constant fourth-order tensors, built once (building them per call
-          // cost a tenth of the assembly).
-          static const SymmetricTensor<4, 3> I_dev = deviator_tensor<3>();
-          static const SymmetricTensor<4, 3> IxI   = outer_product(I, I);
-          static const SymmetricTensor<4, 3> I_sym = identity_tensor<3>();
+          double *C = response.tangent.begin_raw();
           if (dp > 0)
             {
               // Consistent tangent of the radial return (Simo & Hughes 1998, box 3.2,
-              // with H' including the viscous term of eq. 18).
+              // with H' including the viscous term of eq. 18):
+              //   C = K δ⊗δ + 2G ((1 − a) I_dev + (a − b) n⊗n),
+              //   ∂σ/∂σ̃ₙ = I_sym − b n⊗n − a (I_dev − n⊗n).
               const double a = 3 * G * dp / q_trial, b = 3 * G / (3 * G + H);
-              const SymmetricTensor<4, 3> nn = outer_product(n, n);
-              response.tangent = K * IxI + 2 * G * ((1 - a) * I_dev + (a - b) * nn);
-              response.sensitivity_is_identity    = false;
-              response.rotated_stress_sensitivity = I_sym - b * nn - a * (I_dev - nn);
+              fill_tangent<true>(C, K, 2 * G * (1 - a), 2 * G * (a - b), n);
+              response.sensitivity_is_identity = false;
+              fill_sensitivity(response.rotated_stress_sensitivity.begin_raw(), a, b, n);
             }
           else
             {
-              response.tangent                 = K * IxI + 2 * G * I_dev;
+              fill_tangent<false>(C, K, 2 * G, 0., n);
               response.sensitivity_is_identity = true;
             }
         }
@@ -301,29 +543,42 @@ namespace anvil
       if (request & request_temperature_derivative)
         {
           // ∂σ/∂T_{n+1} at fixed Δε and σ_n (T_n fixed, so ∂ΔT/∂T = 1).
-          const double                g  = el.relative_modulus_derivative(T);
+          static const SymmetricTensor<2, 3> I = unit_symmetric_tensor<3>();
+          SymmetricTensor<2, 3>              de_t, n_t;
+          for (unsigned int c = 0; c < 6; ++c)
+            {
+              de_t.access_raw_entry(c) = de[c];
+              n_t.access_raw_entry(c)  = n[c];
+            }
+          const double                g = el.relative_modulus_derivative(T);
           const SymmetricTensor<2, 3> dtrial =
-            g * (K * tr_de * I + 2 * G * deviator(de)) - 3 * K * beta * I;
+            g * (K * tr_de * I + 2 * G * deviator(de_t)) - 3 * K * beta * I;
           SymmetricTensor<2, 3> ds = dtrial;
           if (dp > 0)
             {
-              const double dG     = g * G;
-              const double dq     = std::sqrt(1.5) * (n * dtrial);
-              const double ddp    = (dq - 3 * dG * dp - Y.temperature_derivative -
+              V.temperature_derivative =
+                model.viscosity.temperature_derivative(rate, T, eps_c, dp, V.stress);
+              const double dG  = g * G;
+              const double dq  = std::sqrt(1.5) * (n_t * dtrial);
+              const double ddp = (dq - 3 * dG * dp - Y.temperature_derivative -
                                   V.temperature_derivative) / (3 * G + H);
-              const SymmetricTensor<2, 3> dn = (deviator(dtrial) - (n * dtrial) * n) / norm_s;
-              ds -= std::sqrt(6.) * ((dG * dp + G * ddp) * n + G * dp * dn);
+              const SymmetricTensor<2, 3> dn = (deviator(dtrial) - (n_t * dtrial) * n_t) / norm_s;
+              ds -= std::sqrt(6.) * ((dG * dp + G * ddp) * n_t + G * dp * dn);
             }
           response.stress_temperature_derivative = ds;
         }
 
       // Heat sources over the step (always cheap; needed by the adiabatic loop).
-      const double dt     = inc.time_step;
-      const double q_end  = q_trial - 3 * G * dp;
-      const double q_old  = std::sqrt(1.5) * deviator(stress_n).norm();
-      // Ẇirr = σ̄ ε̄̇ (eq. 21) with σ̄ averaged over the step (exact for linear
-      // hardening); flow starts at the yield stress if the step began elastic.
-      const double work = dp > 0 ? 0.5 * (std::max(q_old, Y_start.stress) + q_end) * dp : 0.;
+      const double dt   = inc.time_step;
+      double       work = 0;
+      if (dp > 0)
+        {
+          // Ẇirr = σ̄ ε̄̇ (eq. 21) with σ̄ averaged over the step (exact for linear
+          // hardening); flow starts at the yield stress if the step began elastic.
+          const double q_end = q_trial - 3 * G * dp;
+          const double q_old = std::sqrt(1.5) * deviator(stress_n).norm();
+          work               = 0.5 * (std::max(q_old, Y_start.stress) + q_end) * dp;
+        }
       response.plastic_work_rate        = work / dt;
       response.plastic_dissipation_rate = el.taylor_quinney * work / dt;
       // Ẇthel = −3Kβ T tr(Δεᵉ)/Δt (plastic flow is isochoric), doc/thermodynamics.md.

@@ -97,7 +97,7 @@ namespace anvil
       parse_table(prm.get("Table"), scene, path + "/Table", T_table, p_table);
   }
 
-  double TemperatureLaw::value(const double T) const
+  double TemperatureLaw::general_value(const double T) const
   {
     switch (kind)
       {
@@ -110,7 +110,7 @@ namespace anvil
       }
   }
 
-  double TemperatureLaw::derivative(const double T) const
+  double TemperatureLaw::general_derivative(const double T) const
   {
     switch (kind)
       {
@@ -282,6 +282,28 @@ namespace anvil
       scene.fail(p + "/Strength coefficient", "and 'Reference strain' must be > 0 for swift");
     if (model == "table" && (eps_table.front() != 0 || !(sigma_table.front() > 0)))
       scene.fail(p + "/Table", "must start at plastic strain 0 with a yield stress > 0");
+    table_nondecreasing = true;
+    for (unsigned int i = 1; i < sigma_table.size(); ++i)
+      table_nondecreasing = table_nondecreasing && sigma_table[i] >= sigma_table[i - 1];
+  }
+
+  bool HardeningLaw::is_nondecreasing(const double T) const
+  {
+    const double theta = thermal.factor(T);
+    auto         f     = [&](bool soft) { return soft ? theta : 1.; };
+    switch (kind)
+      {
+        case Kind::linear:
+          return f(soft_h) * h >= 0;
+        case Kind::swift: // slope K n (ε₀ + ε̄)^{n-1}, n ≥ 0
+          return f(soft_K) * K >= 0;
+        case Kind::voce: // slope (σ∞ − σ₀) δ e^{−δ ε̄}, δ ≥ 0
+          return f(soft_sigma_inf) * sigma_inf - f(soft_sigma0) * sigma0 >= 0;
+        case Kind::saturation:
+          return f(soft_h) * h >= 0 && f(soft_sigma_inf) * sigma_inf - f(soft_sigma0) * sigma0 >= 0;
+        default:
+          return theta >= 0 && table_nondecreasing;
+      }
   }
 
   HardeningLaw::Value HardeningLaw::evaluate(const double eps, const double T) const

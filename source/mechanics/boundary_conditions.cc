@@ -16,12 +16,6 @@ namespace anvil
 
   namespace
   {
-    template <int dim>
-    std::string variables()
-    {
-      return dim == 2 ? "x,y,t" : "x,y,z,t";
-    }
-
     // A vector function whose components are given scalar functions (or 0).
     template <int dim>
     class ComponentFunction : public Function<dim>
@@ -43,42 +37,6 @@ namespace anvil
       const std::vector<std::shared_ptr<FunctionParser<dim>>> &components;
     };
   } // namespace
-
-  template <int dim>
-  std::shared_ptr<FunctionParser<dim>> parse_expression(const std::string &expression,
-                                                        const Scene       &scene,
-                                                        const std::string &path)
-  {
-    auto f = std::make_shared<FunctionParser<dim>>(1);
-    // deal.II prints muparser's diagnosis to std::cerr before it throws:
-    // capture it for our one-line message.
-    std::ostringstream diagnosis;
-    std::streambuf    *cerr_buffer = std::cerr.rdbuf(diagnosis.rdbuf());
-    bool               ok          = true;
-    try
-      {
-        f->initialize(variables<dim>(), expression, {{"pi", numbers::PI}}, true);
-        f->value(Point<dim>()); // muparser reports unknown names on first evaluation
-      }
-    catch (...)
-      {
-        ok = false;
-      }
-    std::cerr.rdbuf(cerr_buffer);
-    if (!ok)
-      {
-        std::string reason;
-        const std::string text = diagnosis.str();
-        const auto        m    = text.find("Message:");
-        if (m != std::string::npos)
-          reason = trim(text.substr(m + 8, text.find('\n', m) - m - 8));
-        scene.fail(path, "has an invalid expression '" + expression + "'" +
-                           (reason.empty() ? "" : " (" + reason + ")") +
-                           ": expected a muparser formula in " + variables<dim>() +
-                           " (e.g. 0.5*t or if(t<1, t, 1))");
-      }
-    return f;
-  }
 
   template <int dim>
   void BoundaryConditions<dim>::declare_parameters(ParameterHandler &prm)
@@ -218,6 +176,4 @@ namespace anvil
 
   template class BoundaryConditions<2>;
   template class BoundaryConditions<3>;
-  template std::shared_ptr<FunctionParser<2>> parse_expression<2>(const std::string &, const Scene &, const std::string &);
-  template std::shared_ptr<FunctionParser<3>> parse_expression<3>(const std::string &, const Scene &, const std::string &);
 } // namespace anvil

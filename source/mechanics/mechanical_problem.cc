@@ -17,6 +17,7 @@
 #include <anvil/mechanics/mechanical_problem.h>
 
 #include <chrono>
+#include <limits>
 #include <sstream>
 #include <cmath>
 
@@ -69,7 +70,11 @@ namespace anvil
     prm.declare_entry("Absolute residual tolerance", "1e-12", Patterns::Double(0),
                       "Residual norm in N below which a step is converged whatever the scale.");
     prm.declare_entry("Displacement tolerance", "1e-8", Patterns::Double(0),
-                      "Relative increment tolerance: |δu| <= tol * |Δu of the step| (dimensionless).");
+                      "Relative increment tolerance: the next correction, estimated as the last one "
+                      "times the residual's contraction, <= tol * |Δu of the step| (dimensionless).");
+    prm.declare_entry("Extrapolate", "true", Patterns::Bool(),
+                      "Start each step from the last step's increment scaled to the new step "
+                      "(linear extrapolation in time) instead of the committed configuration.");
     prm.declare_entry("Check tangent", "false", Patterns::Bool(),
                       "Compare the assembled tangent with central finite differences of the "
                       "residual at every Newton iteration and print the relative error (slow; "
@@ -149,6 +154,7 @@ namespace anvil
     displacement_tolerance      = prm.get_double("Displacement tolerance");
     line_search                 = prm.get_bool("Line search");
     check_tangent               = prm.get_bool("Check tangent");
+    extrapolate                 = prm.get_bool("Extrapolate");
     prm.leave_subsection();
     prm.enter_subsection("Linear solver");
     linear_solver         = prm.get("Type");
@@ -207,6 +213,8 @@ namespace anvil
                                                locally_relevant_dofs);
     system_matrix.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
 
+    previous_time_step = 0;
+    previous_increment.reinit(locally_owned_dofs, mpi_communicator);
     for (auto *v : {&system_rhs, &internal_force, &internal_force_old, &external_force,
                     &external_force_old, &reaction_force, &reaction_force_old, &owned_solution,
                     &owned_old_solution, &velocity_old, &acceleration_old, &static_residual_old,
@@ -479,8 +487,20 @@ namespace anvil
     // inhomogeneous constraints, so the whole body follows the boundary
     // (moving only the boundary nodes would invert the cells next to it when
     // the jump exceeds their size).
+    //
+    // The free dofs start from the last step's increment scaled to this step
+    // (linear extrapolation in time), which puts yielding points on their
+    // plastic branch from the first iteration; if that inverts an element,
+    // from the committed configuration.
     owned_solution = owned_old_solution;
-    solution       = owned_solution;
+    if (parameters.extrapolate && previous_time_step > 0)
+      {
+        owned_solution.add(current_time_step / previous_time_step, previous_increment);
+        solution = owned_solution;
+        if (!assemble(false, time_new))
+          owned_solution = owned_old_solution;
+      }
+    solution = owned_solution;
     predictor_constraints.clear();
     predictor_constraints.reinit(locally_relevant_dofs);
     DoFTools::make_hanging_node_constraints(dof_handler, predictor_constraints);
@@ -492,7 +512,7 @@ namespace anvil
         if (locally_relevant_dofs.is_element(dof) && !predictor_constraints.is_constrained(dof))
           {
             predictor_constraints.add_line(dof);
-            predictor_constraints.set_inhomogeneity(dof, value - old_solution(dof));
+            predictor_constraints.set_inhomogeneity(dof, value - solution(dof));
           }
       std::map<types::global_dof_index, double> increments;
       boundary_conditions.interpolate_velocity_increment(dof_handler, time_old, time_new, increments);
@@ -500,7 +520,7 @@ namespace anvil
         if (locally_relevant_dofs.is_element(dof) && !predictor_constraints.is_constrained(dof))
           {
             predictor_constraints.add_line(dof);
-            predictor_constraints.set_inhomogeneity(dof, increment);
+            predictor_constraints.set_inhomogeneity(dof, increment + old_solution(dof) - solution(dof));
           }
     }
     predictor_constraints.close();
@@ -546,14 +566,28 @@ namespace anvil
         const double du_scale = step_u.l2_norm();
         const bool residual_ok =
           r <= parameters.absolute_residual_tolerance || r <= parameters.residual_tolerance * scale;
-        const bool increment_ok =
-          (last_increment >= 0 && last_increment <= parameters.displacement_tolerance * du_scale) ||
+        // The correction that would come next is about the last one times the
+        // residual's contraction (quadratic convergence makes this sharp):
+        // test that instead of paying one more solve to see it.
+        const double r_previous = result.residuals.size() > 1 ?
+                                    result.residuals[result.residuals.size() - 2] : r;
+        const double predicted_increment =
+          last_increment * std::min(1.0, r / std::max(r_previous, 1e-300));
+        // Corrections cannot fall below round-off of the displacement itself.
+        const double increment_floor = 100 * std::numeric_limits<double>::epsilon() *
+                                       owned_solution.l2_norm();
+        const bool   increment_ok =
+          (last_increment >= 0 &&
+           predicted_increment <= std::max(parameters.displacement_tolerance * du_scale,
+                                           increment_floor)) ||
           r <= parameters.absolute_residual_tolerance;
         // Corrections a thousand times below the increment tolerance mean the
         // residual sits on its round-off floor: accept.
-        const bool stagnated = last_increment >= 0 &&
-                               last_increment <= 1e-3 * parameters.displacement_tolerance * du_scale &&
-                               r <= 1e3 * parameters.residual_tolerance * scale;
+        const bool stagnated =
+          last_increment >= 0 &&
+          last_increment <= std::max(1e-3 * parameters.displacement_tolerance * du_scale,
+                                     increment_floor) &&
+          r <= 1e3 * parameters.residual_tolerance * scale;
         if ((residual_ok && (increment_ok || it == 0) && !(it == 0 && has_jump)) || stagnated)
           {
             result.converged  = true;
@@ -672,6 +706,8 @@ namespace anvil
     energy_audit.plastic_work += step_plastic_work;
     energy_audit.elastic_energy = elastic_strain_energy();
 
+    previous_increment = du;
+    previous_time_step = current_time_step;
     for (auto &p : points)
       if (p)
         p->commit();

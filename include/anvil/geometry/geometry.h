@@ -1,10 +1,12 @@
 #pragma once
 
+#include <deal.II/base/function_parser.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/types.h>
 #include <deal.II/distributed/tria.h>
 
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -84,6 +86,7 @@ namespace anvil
     std::string  mesh_file;
     unsigned int global_refinements = 0;
     double       random_distortion  = 0;
+    std::vector<std::shared_ptr<dealii::FunctionParser<dim>>> transformation;
 
     // Filled by parse_parameters (generators) or by create (gmsh reads the file
     // once at parse to learn the names, so they are known before any work).

@@ -25,14 +25,40 @@ namespace anvil
                                  double                    reference_temperature);
     bool active() const { return enabled; }
 
+    /**
+     * What does not change during one update: the temperature and time step
+     * parts of the overstress, evaluated once per update (the return map
+     * evaluates the overstress at every iteration).
+     */
+    struct Rate
+    {
+      double eta_root = 0;     // η_T(T)^{1/n(T)}; 0: no overstress (off, or η_T ≤ 0)
+      double inv_n = 1, m = 1; // 1/n(T), m(T)
+      double inv_m = 1;        // 1/m(T)
+      double strain_power = 0; // a/n(T): η(ε̄, T)^{1/n} = η_T^{1/n} (1 + ε̄/ε_η)^{a/n}
+      double dt = 1;           // s
+      bool   active() const { return eta_root > 0; }
+    };
+    Rate at(double T, double dt) const;
+
     struct Value
     {
-      double stress = 0;                 // the overstress η^{1/n} ε̄̇^{1/m}, MPa
-      double derivative = 0;             // d/dΔε̄ at fixed T (incl. η's ε̄ dependence)
-      double temperature_derivative = 0; // ∂/∂T at fixed Δε̄
+      double stress = 0;         // the overstress η^{1/n} ε̄̇^{1/m}, MPa
+      double derivative = 0;     // d/dΔε̄ at fixed T (incl. η's ε̄ dependence)
+      double log_derivative = 0; // Δε̄ d/dΔε̄ = d/d ln Δε̄ (finite as Δε̄ → 0)
+      double temperature_derivative = 0; // ∂/∂T at fixed Δε̄ (only from temperature_derivative())
     };
-    /// Overstress at plastic strain @p eps after an increment @p dp over @p dt.
-    Value evaluate(double eps, double dp, double dt, double T) const;
+    /// Overstress at plastic strain @p eps after an increment @p dp over rate.dt.
+    Value evaluate(const Rate &rate, double eps, double dp) const;
+    /// ∂V/∂T at fixed Δε̄ of the overstress @p stress = evaluate(rate, eps, dp).stress at @p T.
+    double temperature_derivative(const Rate &rate, double T, double eps, double dp,
+                                  double stress) const;
+    /// The increment Δε̄ at which η(@p eps, T)^{1/n} (Δε̄/Δt)^{1/m} equals
+    /// @p overstress. With @p eps where η is smallest over the increment and
+    /// @p overstress = q_trial − σᵥ(ε̄ₙ), it bounds the root of the return
+    /// map from above when σᵥ is nondecreasing.
+    double rate_bound(const Rate &rate, double eps, double overstress) const;
+    double strain_exponent_value() const { return strain_exponent; }
 
   private:
     bool           enabled = false;

@@ -31,12 +31,17 @@ namespace anvil
                                  const std::string        &path,
                                  double                    reference_temperature);
 
-    double value(double T) const;
-    double derivative(double T) const;
+    /// p(T) and dp/dT. The constant case is inline: these run several times
+    /// per material point update.
+    double value(double T) const { return kind == Kind::constant ? p0 : general_value(T); }
+    double derivative(double T) const { return kind == Kind::constant ? 0. : general_derivative(T); }
     bool   is_constant() const { return kind == Kind::constant; }
     double reference() const { return p0; }
 
   private:
+    double general_value(double T) const;
+    double general_derivative(double T) const;
+
     enum class Kind
     {
       constant,
@@ -107,6 +112,12 @@ namespace anvil
     /// σᵥ, ∂σᵥ/∂ε̄ and ∂σᵥ/∂T at (ε̄, T).
     Value  evaluate(double eps, double T) const;
     double initial_yield_stress(double T) const { return evaluate(0, T).stress; }
+    /// σᵥ is linear in ε̄ (the linear model): σᵥ(ε̄ₙ + Δε̄) = σᵥ(ε̄ₙ) + slope Δε̄,
+    /// so the rate-independent return has a closed form.
+    bool is_linear() const { return kind == Kind::linear; }
+    /// σᵥ(·, T) is nondecreasing in ε̄ ≥ 0 at temperature @p T: then σᵥ stays
+    /// positive over a plastic increment once it is positive at its start.
+    bool is_nondecreasing(double T) const;
     const ThermalSoftening &softening() const { return thermal; }
 
   private:
@@ -123,6 +134,7 @@ namespace anvil
     double              sigma0 = 0, h = 0, sigma_inf = 0, delta = 0, K = 0, eps0 = 0, n = 1;
     bool                soft_sigma0 = true, soft_h = true, soft_sigma_inf = true, soft_K = true;
     std::vector<double> eps_table, sigma_table;
+    bool                table_nondecreasing = true;
     ThermalSoftening    thermal;
   };
 } // namespace anvil

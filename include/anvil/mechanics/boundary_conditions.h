@@ -6,6 +6,8 @@
 #include <deal.II/fe/component_mask.h>
 #include <deal.II/lac/affine_constraints.h>
 
+#include <anvil/core/expression.h>
+
 #include <map>
 #include <memory>
 #include <string>
@@ -80,9 +82,4 @@ namespace anvil
     std::vector<Pressure>               pressure_loads;
   };
 
-  /// Parse one muparser expression in x, y, (z,) t; InputError via scene.fail on bad syntax.
-  template <int dim>
-  std::shared_ptr<dealii::FunctionParser<dim>> parse_expression(const std::string &expression,
-                                                                const Scene       &scene,
-                                                                const std::string &path);
 } // namespace anvil

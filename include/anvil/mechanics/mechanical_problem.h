@@ -45,6 +45,7 @@ namespace anvil
       bool         f_bar                        = true;
       bool         axisymmetric                 = false;
       bool         check_tangent                = false;
+      bool         extrapolate                  = true;
       double       temperature                  = 293;
       // Implicit dynamics (generalized-α, Chung & Hulbert 1993).
       bool         dynamic                      = false;
@@ -212,7 +213,8 @@ namespace anvil
     dealii::TrilinosWrappers::MPI::Vector inertia_force;       // M a_{n+1}
     dealii::Tensor<1, dim> gravity; // mm/s², body force ρ g
     double assembly_rate = 0;
-    double current_time_step = 1, current_time = 0;
+    double current_time_step = 1, current_time = 0, previous_time_step = 0;
+    dealii::TrilinosWrappers::MPI::Vector previous_increment; // Δu of the last accepted step
     std::string material_failure; // this rank's, from the last assembly
   };
 } // namespace anvil

@@ -1,0 +1,50 @@
+#include <anvil/core/expression.h>
+#include <anvil/core/scene.h>
+
+#include <iostream>
+#include <sstream>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  template <int dim>
+  std::shared_ptr<FunctionParser<dim>> parse_expression(const std::string &expression,
+                                                        const Scene       &scene,
+                                                        const std::string &path)
+  {
+    auto f = std::make_shared<FunctionParser<dim>>(1);
+    // deal.II prints muparser's diagnosis to std::cerr before it throws:
+    // capture it for our one-line message.
+    std::ostringstream diagnosis;
+    std::streambuf    *cerr_buffer = std::cerr.rdbuf(diagnosis.rdbuf());
+    bool               ok          = true;
+    try
+      {
+        f->initialize((dim == 2 ? std::string("x,y,t") : std::string("x,y,z,t")), expression, {{"pi", numbers::PI}}, true);
+        f->value(Point<dim>()); // muparser reports unknown names on first evaluation
+      }
+    catch (...)
+      {
+        ok = false;
+      }
+    std::cerr.rdbuf(cerr_buffer);
+    if (!ok)
+      {
+        std::string reason;
+        const std::string text = diagnosis.str();
+        const auto        m    = text.find("Message:");
+        if (m != std::string::npos)
+          reason = trim(text.substr(m + 8, text.find('\n', m) - m - 8));
+        scene.fail(path, "has an invalid expression '" + expression + "'" +
+                           (reason.empty() ? "" : " (" + reason + ")") +
+                           ": expected a muparser formula in " + (dim == 2 ? std::string("x,y,t") : std::string("x,y,z,t")) +
+                           " (e.g. 0.5*t or if(t<1, t, 1))");
+      }
+    return f;
+  }
+
+
+  template std::shared_ptr<FunctionParser<2>> parse_expression<2>(const std::string &, const Scene &, const std::string &);
+  template std::shared_ptr<FunctionParser<3>> parse_expression<3>(const std::string &, const Scene &, const std::string &);
+} // namespace anvil
