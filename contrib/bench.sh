@@ -7,22 +7,36 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 out="${ANVIL_BENCH_DIR:-$ANVIL_BUILD/bench}"
 mkdir -p "$out"
-n2=512; n3=69
-if [ "${1:-}" = "--small" ]; then n2=128; n3=20; fi
+n2=512; n3=69; n3p=40
+if [ "${1:-}" = "--small" ]; then n2=128; n3=20; n3p=16; fi
 export DEAL_II_NUM_THREADS=1
-run() { # name dim blocks
+run() { # name dim blocks [extra --set value | --set pairs...]
+  local name=$1 dim=$2 blocks=$3; shift 3
+  local extra=()
+  while [ $# -gt 0 ]; do
+    if [ "$1" = "--set" ]; then extra+=(--set "$2"); shift 2; else extra+=(--set "$1"); shift; fi
+  done
   /usr/bin/time -f "%e s wall, %M KB peak" "$ANVIL_BUILD/anvil" "$ANVIL_ROOT/contrib/bench/elastic_block.prm" \
-    --set "Dimension=$2" --set "Geometry/Blocks=$3" --set "Output/Directory=$out/$1" \
-    ${4:+--set "$4"} 2> "$out/$1.time"
+    --set "Dimension=$dim" --set "Geometry/Blocks=$blocks" --set "Output/Directory=$out/$name" \
+    "${extra[@]}" 2> "$out/$name.time"
 }
+J2=(--set "Bodies/body/Material/Model=J2" --set "Bodies/body/Material/Hardening/Initial yield stress=300"
+    --set "Bodies/body/Material/Hardening/Hardening modulus=1000")
 run 2d 2 "body: 0, 0, 1, 1, $n2, $n2"
 run 3d 3 "body: 0, 0, 0, 1, 1, 1, $n3, $n3, $n3" \
   "Boundary conditions/Displacement=front: ux = 0, uy = 0, uz = 0; back: uz = -0.05*t"
+# Plastic (J2, F-bar Q1): the return map is in the assembly.
+run 2d_plastic 2 "body: 0, 0, 1, 1, $n2, $n2" "Mechanics/Element=F-bar" "${J2[@]}"
+run 3d_plastic 3 "body: 0, 0, 0, 1, 1, 1, $n3p, $n3p, $n3p" \
+  "Boundary conditions/Displacement=front: ux = 0, uy = 0, uz = 0; back: uz = -0.05*t" "${J2[@]}"
+# Newton iterations per step on the necking bar (default tolerances).
+"$ANVIL_BUILD/anvil" "$ANVIL_ROOT/prm/necking_bar.prm" --set "Output/Directory=$out/necking" \
+  --set "Output/Field interval=0" --set "Output/Verbosity=quiet"
 python3 - "$out" <<'PY'
 import json, sys
 out = sys.argv[1]
 print("%-4s %10s %9s %14s %12s %12s %12s %8s" % ("case", "DoFs", "cells", "assembly c/s", "assembly s", "solve s", "B/DoF", "Newton"))
-for case in ("2d", "3d"):
+for case in ("2d", "3d", "2d_plastic", "3d_plastic"):
     s = json.load(open("%s/%s/summary.json" % (out, case)))
     w = s["wall_time_per_phase"]
     print("%-4s %10d %9d %14.0f %12.2f %12.2f %12.0f %8d" % (
@@ -31,5 +45,12 @@ for case in ("2d", "3d"):
         s["memory_per_dof_bytes"], s["newton_iterations"]))
     print("     " + open("%s/%s.time" % (out, case)).read().strip().splitlines()[-1]
           + ", linear iterations %d, steps %d" % (s["linear_iterations"], s["steps"]))
-print("targets: assembly >= 300000 cells/s (2D), >= 40000 cells/s (3D) per core; 3D 1M DoFs within 4096 B/DoF")
+    t = s["wall_time_per_phase"]
+    print("     time per Newton iteration %.3f s (assembly + solve)" % ((w.get("Mechanics: assembly", 0) + w.get("Mechanics: linear solve", 0)) / max(1, s["newton_iterations"])))
+s = json.load(open("%s/necking/summary.json" % out))
+print("necking bar (10 x 40 axisymmetric F-bar): %d steps, %.2f Newton iterations per step, %d cut-backs, %.1f s"
+      % (s["steps"], s["newton_iterations"] / s["steps"], s["cut_backs"], s["wall_time"]))
+print("targets: elastic assembly >= 300000 cells/s (2D), >= 40000 (3D); plastic F-bar >= 150000 (2D), >= 25000 (3D) per core;")
+print("         3D 1M DoFs within 4096 B/DoF; <= 6 Newton iterations per step on the necking bar")
 PY
+"$ANVIL_BUILD/tests/bench_material_points" $([ "${1:-}" = "--small" ] && echo --quick)
