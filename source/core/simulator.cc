@@ -60,6 +60,13 @@ namespace anvil
                       "max(<field>), min(<field>), mean(<field>[, body]) where <field> is a cell "
                       "field: stress_xx..stress_zz, von_mises, pressure [MPa], J, "
                       "equivalent_plastic_strain.");
+    prm.declare_entry("Checkpoint interval", "0", Patterns::Integer(0),
+                      "Write a checkpoint (output/<dir>/checkpoint) every this many steps; one is "
+                      "always written at the end and when a run stops on a failure.");
+    prm.declare_entry("Restart from", "", Patterns::Anything(),
+                      "A checkpoint directory to resume from (its time, state and histories); "
+                      "empty: start at t = 0. The scene must be the one that wrote it (the "
+                      "number of processes may differ).");
     prm.declare_entry("Verbosity", "normal", Patterns::Selection("normal|quiet"),
                       "normal: one line per step and a timing table; quiet: errors only.");
     prm.leave_subsection();
@@ -125,11 +132,23 @@ namespace anvil
                                           TimerOutput::wall_times);
     {
       TimerOutput::Scope t(*timer, "Mesh");
-      geometry.create(triangulation);
+      if (restart_directory.empty())
+        geometry.create(triangulation);
+      else
+        {
+          geometry.create_coarse(triangulation);
+          triangulation.load(restart_directory + "/mesh");
+          geometry.finish_loaded(triangulation);
+        }
     }
     mechanical = std::make_unique<MechanicalProblem<dim>>(triangulation, mechanics_parameters,
                                                           boundary_conditions, materials, *timer);
     mechanical->setup();
+    double t  = 0;
+    double dt = time.time_step;
+    if (!restart_directory.empty())
+      read_checkpoint(t, dt);
+    double last_accepted_step = dt;
 
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       std::filesystem::create_directories(output_dir + "/fields");
@@ -141,11 +160,11 @@ namespace anvil
             << " process(es) -> " << output_dir << std::endl;
 
     open_histories();
-    write_histories(0, 0);
-    write_fields(0, 0);
-
-    double       t  = 0;
-    double       dt = time.time_step;
+    if (restart_directory.empty())
+      {
+        write_histories(0, 0);
+        write_fields(0, 0);
+      }
     const double eps = 1e-12 * time.end_time;
     std::string  status = "completed";
     while (t < time.end_time - eps)
@@ -182,14 +201,18 @@ namespace anvil
                          result.failure + "; minimum time step " +
                          Utilities::to_string(time.minimum_time_step) + " s reached";
                 write_fields(t, n_steps);
+                // Resume with the step of the last accepted one, not the cut one.
+                write_checkpoint(t, last_accepted_step);
                 write_summary(status);
-                failure_reason = status + " (last converged state written to " + output_dir + ")";
+                failure_reason = status + " (last converged state and a checkpoint written to " +
+                                 output_dir + ")";
                 return false;
               }
             continue;
           }
 
         mechanical->commit_step();
+        last_accepted_step = step;
         t            = t + step;
         current_time = t;
         ++n_steps;
@@ -197,6 +220,8 @@ namespace anvil
         const bool last = t >= time.end_time - eps;
         if (last || (output_interval > 0 && n_steps % output_interval == 0))
           write_fields(t, n_steps);
+        if (last || (checkpoint_interval > 0 && n_steps % checkpoint_interval == 0))
+          write_checkpoint(t, dt);
 
         if (!quiet)
           {

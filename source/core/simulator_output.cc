@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 
 namespace anvil
 {
@@ -41,12 +42,18 @@ namespace anvil
   {
     prm.enter_subsection("Output");
     output_dir      = prm.get("Directory");
-    output_interval = prm.get_integer("Field interval");
+    output_interval     = prm.get_integer("Field interval");
+    checkpoint_interval = prm.get_integer("Checkpoint interval");
+    restart_directory   = trim(prm.get("Restart from"));
     quiet           = prm.get("Verbosity") == "quiet";
     const std::string probe_text = prm.get("Probes");
     const std::string qoi_text   = prm.get("Quantities of interest");
     prm.leave_subsection();
 
+    if (!restart_directory.empty() &&
+        !std::filesystem::exists(restart_directory + "/state.txt"))
+      scene.fail("Output/Restart from", "= '" + restart_directory +
+                                          "' is not a checkpoint directory (no state.txt in it)");
     if (output_dir.empty())
       output_dir = "output/" + std::filesystem::path(scene.filename().empty() ? "anvil" : scene.filename())
                                  .stem()
@@ -155,7 +162,8 @@ namespace anvil
         for (unsigned int d = 0; d < dim; ++d)
           columns.push_back(name + "_F" + "xyz"[d]);
       }
-    reactions_csv.open(output_dir + "/reactions.csv", columns, root);
+    const bool append = !restart_directory.empty();
+    reactions_csv.open(output_dir + "/reactions.csv", columns, root, append);
 
     if (!probes.empty())
       {
@@ -168,15 +176,15 @@ namespace anvil
               columns.push_back(p.name + "_stress_" + c);
             columns.push_back(p.name + "_equivalent_plastic_strain");
           }
-        probes_csv.open(output_dir + "/probes.csv", columns, root);
+        probes_csv.open(output_dir + "/probes.csv", columns, root, append);
       }
     energy_csv.open(output_dir + "/energy.csv",
                     {"step", "time", "external_work", "internal_work", "kinetic_energy",
                      "plastic_work", "elastic_energy", "stress_work", "balance_error"},
-                    root);
+                    root, append);
     newton_csv.open(output_dir + "/newton.csv",
                     {"step", "time", "iteration", "residual", "increment", "line_search", "converged"},
-                    root);
+                    root, append);
   }
 
   template <int dim>
@@ -250,6 +258,49 @@ namespace anvil
         std::ofstream pvd(output_dir + "/solution.pvd");
         DataOutBase::write_pvd_record(pvd, pvd_records);
       }
+  }
+
+  template <int dim>
+  void Simulator<dim>::write_checkpoint(const double t, const double dt)
+  {
+    TimerOutput::Scope s(*timer, "Checkpoint");
+    const std::string dir = output_dir + "/checkpoint";
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      std::filesystem::create_directories(dir);
+    MPI_Barrier(mpi_communicator);
+    mechanical->prepare_checkpoint();
+    triangulation.save(dir + "/mesh");
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        std::ofstream state(dir + "/state.txt");
+        state << std::setprecision(17) << t << ' ' << dt << ' ' << n_steps << ' ' << n_cut_backs
+              << ' ' << n_newton << ' ' << n_linear << '\n';
+        for (const double x : mechanical->checkpoint_scalars())
+          state << x << ' ';
+        state << '\n' << pvd_records.size() << '\n';
+        for (const auto &[time, name] : pvd_records)
+          state << time << ' ' << name << '\n';
+      }
+  }
+
+  template <int dim>
+  void Simulator<dim>::read_checkpoint(double &t, double &dt)
+  {
+    mechanical->load_checkpoint();
+    std::ifstream state(restart_directory + "/state.txt");
+    state >> t >> dt >> n_steps >> n_cut_backs >> n_newton >> n_linear;
+    std::vector<double> scalars(mechanical->checkpoint_scalars().size());
+    for (double &x : scalars)
+      state >> x;
+    mechanical->restore_scalars(scalars);
+    std::size_t n = 0;
+    state >> n;
+    pvd_records.resize(n);
+    for (auto &[time, name] : pvd_records)
+      state >> time >> name;
+    if (!state)
+      throw InputError(restart_directory + "/state.txt: cannot read the checkpoint state");
+    current_time = t;
   }
 
   template <int dim>

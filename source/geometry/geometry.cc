@@ -540,7 +540,7 @@ namespace anvil
   }
 
   template <int dim>
-  void Geometry<dim>::create(parallel::distributed::Triangulation<dim> &triangulation) const
+  void Geometry<dim>::create_coarse(parallel::distributed::Triangulation<dim> &triangulation) const
   {
     // p4est needs the coarse mesh as a whole: build it serially, then copy.
     // Same smoothing as the target, since copy_triangulation copies it.
@@ -563,7 +563,19 @@ namespace anvil
     for (const types::manifold_id id : serial.get_manifold_ids())
       if (id != numbers::flat_manifold_id)
         triangulation.set_manifold(id, serial.get_manifold(id));
+  }
+
+  template <int dim>
+  void Geometry<dim>::create(parallel::distributed::Triangulation<dim> &triangulation) const
+  {
+    create_coarse(triangulation);
     triangulation.refine_global(global_refinements);
+    finish_loaded(triangulation);
+  }
+
+  template <int dim>
+  void Geometry<dim>::finish_loaded(parallel::distributed::Triangulation<dim> &triangulation) const
+  {
     if (!transformation.empty())
       GridTools::transform(
         [this](const Point<dim> &p) {

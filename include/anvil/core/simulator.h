@@ -75,6 +75,8 @@ namespace anvil
     void write_fields(double time, unsigned int step);
     void evaluate_quantities();
     void write_summary(const std::string &status);
+    void write_checkpoint(double time, double time_step);
+    void read_checkpoint(double &time, double &time_step);
 
     Scene                                       &scene;
     MPI_Comm                                     mpi_communicator;
@@ -89,7 +91,8 @@ namespace anvil
     TimeParameters                               time;
 
     std::string           output_dir;
-    unsigned int          output_interval = 1;
+    unsigned int          output_interval = 1, checkpoint_interval = 0;
+    std::string           restart_directory;
     bool                  quiet           = false;
     std::vector<Probe>    probes;
     std::vector<Quantity> quantities;

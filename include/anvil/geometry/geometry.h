@@ -40,8 +40,14 @@ namespace anvil
     /// Reads the Geometry subsection; checks ranges and that the mesh file exists.
     void parse_parameters(dealii::ParameterHandler &prm, const Scene &scene);
 
-    /// Build the coarse mesh, name its parts, refine globally.
+    /// Build the coarse mesh, name its parts, refine globally, transform.
     void create(dealii::parallel::distributed::Triangulation<dim> &triangulation) const;
+
+    /// Build only the coarse mesh (a checkpoint's triangulation.load() then
+    /// refines it as saved); call finish_loaded() afterwards.
+    void create_coarse(dealii::parallel::distributed::Triangulation<dim> &triangulation) const;
+    /// Apply the Transformation to a loaded (refined) mesh.
+    void finish_loaded(dealii::parallel::distributed::Triangulation<dim> &triangulation) const;
 
     const std::map<std::string, dealii::types::boundary_id> &boundary_names() const
     {

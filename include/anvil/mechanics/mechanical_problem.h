@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/timer.h>
+#include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_system.h>
@@ -145,6 +146,19 @@ namespace anvil
     /// current iterate: the finite-difference check of the tangent.
     double tangent_error();
 
+    /**
+     * Checkpoint: attach the committed state (displacement, velocity,
+     * acceleration, force histories, every material point's state) to the
+     * triangulation; the caller then calls triangulation.save(). After
+     * triangulation.load() and setup(), load_checkpoint() restores it (also
+     * on another number of processes).
+     */
+    void prepare_checkpoint();
+    void load_checkpoint();
+    /// Scalars of the committed state (energies, last step) and back.
+    std::vector<double> checkpoint_scalars() const;
+    void                restore_scalars(const std::vector<double> &values);
+
     /// Cells per second of the last full (matrix + residual) assembly on this rank.
     double last_assembly_rate() const { return assembly_rate; }
     std::size_t memory_consumption() const;
@@ -215,6 +229,12 @@ namespace anvil
     double assembly_rate = 0;
     double current_time_step = 1, current_time = 0, previous_time_step = 0;
     dealii::TrilinosWrappers::MPI::Vector previous_increment; // Δu of the last accepted step
+    // Checkpoint transfer (alive between prepare and the triangulation's save).
+    std::unique_ptr<dealii::parallel::distributed::SolutionTransfer<dim, dealii::TrilinosWrappers::MPI::Vector>>
+                                                       checkpoint_transfer;
+    std::vector<dealii::TrilinosWrappers::MPI::Vector> checkpoint_vectors;
+    unsigned int                                       checkpoint_handle = 0;
+    std::vector<dealii::TrilinosWrappers::MPI::Vector *> checkpoint_targets();
     std::string material_failure; // this rank's, from the last assembly
   };
 } // namespace anvil

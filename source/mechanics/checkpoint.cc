@@ -1,0 +1,129 @@
+// Checkpoint and restart of MechanicalProblem: vectors through deal.II's
+// SolutionTransfer, material point states through data attached to the
+// triangulation's cells, so a run can resume on any number of processes.
+#include <deal.II/distributed/solution_transfer.h>
+
+#include <anvil/mechanics/mechanical_problem.h>
+
+#include <cstring>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  template <int dim>
+  std::vector<TrilinosWrappers::MPI::Vector *> MechanicalProblem<dim>::checkpoint_targets()
+  {
+    return {&owned_old_solution, &velocity_old,       &acceleration_old,  &previous_increment,
+            &internal_force_old, &external_force_old, &reaction_force_old, &static_residual_old};
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::prepare_checkpoint()
+  {
+    // SolutionTransfer wants ghosted inputs.
+    const auto targets = checkpoint_targets();
+    checkpoint_vectors.clear();
+    for (const auto *v : targets)
+      {
+        checkpoint_vectors.emplace_back(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+        checkpoint_vectors.back() = *v;
+      }
+    std::vector<const TrilinosWrappers::MPI::Vector *> inputs;
+    for (const auto &v : checkpoint_vectors)
+      inputs.push_back(&v);
+    checkpoint_transfer =
+      std::make_unique<parallel::distributed::SolutionTransfer<dim, TrilinosWrappers::MPI::Vector>>(
+        dof_handler);
+    checkpoint_transfer->prepare_for_serialization(inputs);
+
+    // Material points: per cell, n_q blocks of (size, values).
+    const unsigned int n_q = quadrature.size();
+    auto &tria = const_cast<parallel::distributed::Triangulation<dim> &>(triangulation);
+    checkpoint_handle = tria.register_data_attach(
+      [this, n_q](const typename Triangulation<dim>::cell_iterator &cell,
+                  const typename Triangulation<dim>::CellStatus) {
+        std::vector<double> data;
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const auto state = points[cell->active_cell_index() * n_q + q]->save_state();
+            data.push_back(state.size());
+            data.insert(data.end(), state.begin(), state.end());
+          }
+        std::vector<char> bytes(data.size() * sizeof(double));
+        std::memcpy(bytes.data(), data.data(), bytes.size());
+        return bytes;
+      },
+      /*returns_variable_size_data=*/true);
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::load_checkpoint()
+  {
+    const auto targets = checkpoint_targets();
+    std::vector<TrilinosWrappers::MPI::Vector *> outputs(targets.begin(), targets.end());
+    parallel::distributed::SolutionTransfer<dim, TrilinosWrappers::MPI::Vector> transfer(dof_handler);
+    transfer.deserialize(outputs);
+
+    const unsigned int n_q  = quadrature.size();
+    auto              &tria = const_cast<parallel::distributed::Triangulation<dim> &>(triangulation);
+    // Attached data sets are identified by the order of registration: the
+    // SolutionTransfer registered first (at save and in deserialize()), ours
+    // second, so registering again yields our handle.
+    const unsigned int handle = tria.register_data_attach(
+      [](const typename Triangulation<dim>::cell_iterator &,
+         const typename Triangulation<dim>::CellStatus) { return std::vector<char>(); },
+      true);
+    tria.notify_ready_to_unpack(
+      handle,
+      [this, n_q](const typename Triangulation<dim>::cell_iterator &cell,
+                  const typename Triangulation<dim>::CellStatus,
+                  const boost::iterator_range<std::vector<char>::const_iterator> &bytes) {
+        std::vector<double> data(std::distance(bytes.begin(), bytes.end()) / sizeof(double));
+        std::memcpy(data.data(), &*bytes.begin(), data.size() * sizeof(double));
+        std::size_t k = 0;
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const std::size_t   size = static_cast<std::size_t>(data.at(k++));
+            std::vector<double> state(data.begin() + k, data.begin() + k + size);
+            k += size;
+            points[cell->active_cell_index() * n_q + q]->load_state(state);
+          }
+      });
+
+    owned_solution           = owned_old_solution;
+    solution                 = owned_solution;
+    old_solution             = owned_solution;
+    velocity_old_ghosted     = velocity_old;
+    velocity_ghosted         = velocity_old;
+    acceleration_old_ghosted = acceleration_old;
+  }
+
+  template <int dim>
+  std::vector<double> MechanicalProblem<dim>::checkpoint_scalars() const
+  {
+    const Energy &e = energy_audit;
+    return {e.external_work, e.internal_work, e.stress_work,    e.kinetic,
+            e.initial_kinetic, e.plastic_work, e.elastic_energy, previous_time_step};
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::restore_scalars(const std::vector<double> &v)
+  {
+    Energy &e = energy_audit;
+    e.external_work = v.at(0), e.internal_work = v.at(1), e.stress_work = v.at(2);
+    e.kinetic = v.at(3), e.initial_kinetic = v.at(4), e.plastic_work = v.at(5);
+    e.elastic_energy = v.at(6), previous_time_step = v.at(7);
+  }
+
+  template void MechanicalProblem<2>::prepare_checkpoint();
+  template void MechanicalProblem<3>::prepare_checkpoint();
+  template void MechanicalProblem<2>::load_checkpoint();
+  template void MechanicalProblem<3>::load_checkpoint();
+  template std::vector<double> MechanicalProblem<2>::checkpoint_scalars() const;
+  template std::vector<double> MechanicalProblem<3>::checkpoint_scalars() const;
+  template void MechanicalProblem<2>::restore_scalars(const std::vector<double> &);
+  template void MechanicalProblem<3>::restore_scalars(const std::vector<double> &);
+  template std::vector<TrilinosWrappers::MPI::Vector *> MechanicalProblem<2>::checkpoint_targets();
+  template std::vector<TrilinosWrappers::MPI::Vector *> MechanicalProblem<3>::checkpoint_targets();
+} // namespace anvil
