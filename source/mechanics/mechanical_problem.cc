@@ -215,6 +215,7 @@ namespace anvil
 
     previous_time_step = 0;
     previous_increment.reinit(locally_owned_dofs, mpi_communicator);
+    mesh_diameter = GridTools::diameter(triangulation);
     for (auto *v : {&system_rhs, &internal_force, &internal_force_old, &external_force,
                     &external_force_old, &reaction_force, &reaction_force_old, &owned_solution,
                     &owned_old_solution, &velocity_old, &acceleration_old, &static_residual_old,
@@ -574,8 +575,10 @@ namespace anvil
         const double predicted_increment =
           last_increment * std::min(1.0, r / std::max(r_previous, 1e-300));
         // Corrections cannot fall below round-off of the displacement itself.
-        const double increment_floor = 100 * std::numeric_limits<double>::epsilon() *
-                                       owned_solution.l2_norm();
+        // (positions x = X + u carry the digits, so the scale is the mesh size).
+        const double increment_floor =
+          100 * std::numeric_limits<double>::epsilon() *
+          (owned_solution.l2_norm() + std::sqrt(double(dof_handler.n_dofs())) * mesh_diameter);
         const bool   increment_ok =
           (last_increment >= 0 &&
            predicted_increment <= std::max(parameters.displacement_tolerance * du_scale,

@@ -227,7 +227,7 @@ namespace anvil
     dealii::TrilinosWrappers::MPI::Vector inertia_force;       // M a_{n+1}
     dealii::Tensor<1, dim> gravity; // mm/s², body force ρ g
     double assembly_rate = 0;
-    double current_time_step = 1, current_time = 0, previous_time_step = 0;
+    double current_time_step = 1, current_time = 0, previous_time_step = 0, mesh_diameter = 1;
     dealii::TrilinosWrappers::MPI::Vector previous_increment; // Δu of the last accepted step
     // Checkpoint transfer (alive between prepare and the triangulation's save).
     std::unique_ptr<dealii::parallel::distributed::SolutionTransfer<dim, dealii::TrilinosWrappers::MPI::Vector>>
