@@ -79,6 +79,9 @@ namespace anvil
                       "Compare the assembled tangent with central finite differences of the "
                       "residual at every Newton iteration and print the relative error (slow; "
                       "for debugging new material laws).");
+    prm.declare_entry("Absolute displacement tolerance", "0", Patterns::Double(0),
+                      "Correction norm in mm below which the increment test passes whatever the "
+                      "step (0: only the relative test and the round-off floor).");
     prm.declare_entry("Line search", "true", Patterns::Bool(),
                       "Backtrack (halve the Newton update, up to 5 times) while the residual grows.");
     prm.leave_subsection();
@@ -152,6 +155,7 @@ namespace anvil
     residual_tolerance          = prm.get_double("Residual tolerance");
     absolute_residual_tolerance = prm.get_double("Absolute residual tolerance");
     displacement_tolerance      = prm.get_double("Displacement tolerance");
+    absolute_displacement_tolerance = prm.get_double("Absolute displacement tolerance");
     line_search                 = prm.get_bool("Line search");
     check_tangent               = prm.get_bool("Check tangent");
     extrapolate                 = prm.get_bool("Extrapolate");
@@ -581,8 +585,9 @@ namespace anvil
           (owned_solution.l2_norm() + std::sqrt(double(dof_handler.n_dofs())) * mesh_diameter);
         const bool   increment_ok =
           (last_increment >= 0 &&
-           predicted_increment <= std::max(parameters.displacement_tolerance * du_scale,
-                                           increment_floor)) ||
+           predicted_increment <= std::max({parameters.displacement_tolerance * du_scale,
+                                            parameters.absolute_displacement_tolerance,
+                                            increment_floor})) ||
           r <= parameters.absolute_residual_tolerance;
         // Corrections a thousand times below the increment tolerance mean the
         // residual sits on its round-off floor: accept.

@@ -59,6 +59,7 @@ namespace anvil
       double       residual_tolerance           = 1e-8;
       double       absolute_residual_tolerance  = 1e-12;
       double       displacement_tolerance       = 1e-8;
+      double       absolute_displacement_tolerance = 0;
       bool         line_search                  = true;
       std::string  linear_solver                = "automatic";
       double       linear_tolerance             = 1e-10;

@@ -1,0 +1,280 @@
+#pragma once
+
+#include <deal.II/base/function_parser.h>
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/numerics/data_out.h>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace anvil
+{
+  class Scene;
+  template <int dim>
+  class Geometry;
+
+  /**
+   * Thermal data of one body. ρ and c come from the body's elastic law
+   * (ElasticLaw::density, heat_capacity); the conductivity is declared here,
+   * in the body's `subsection Thermal`:
+   *   k(T) = k₀ (1 + a (T − T_ref))   [N/(s K) = mW/(mm K)].
+   */
+  struct ThermalMaterial
+  {
+    double density               = 7.8e-9; // t/mm³
+    double heat_capacity         = 4.6e8;  // mm²/(s² K)
+    double conductivity          = 50;     // N/(s K)
+    double conductivity_slope    = 0;      // a, 1/K
+    double reference_temperature = 293;    // K
+
+    double k(const double T) const
+    {
+      return conductivity * (1 + conductivity_slope * (T - reference_temperature));
+    }
+    double dk_dT() const { return conductivity * conductivity_slope; }
+
+    /// Declares `subsection Thermal` inside the current subsection.
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    /// Reads `subsection Thermal` of the current subsection; @p path (e.g.
+    /// "Bodies/steel/Material") names it in errors. ρ and c are given.
+    static ThermalMaterial parse_parameters(dealii::ParameterHandler &prm, const Scene &scene,
+                                            const std::string &path, double density,
+                                            double heat_capacity);
+  };
+
+  /**
+   * `subsection Heat / subsection Boundary conditions`. Every entry is a
+   * ';'-separated list of 'boundary: values', values being muparser
+   * expressions in x, y (, z), t evaluated on the current configuration:
+   *  - Temperature = 'left: 293 + 10*t'           (K, Dirichlet)
+   *  - Flux        = 'top: 0.5'                   (mW/mm², into the body > 0)
+   *  - Convection  = 'right: h, T_inf'            (h in mW/(mm² K), T_inf in K)
+   *  - Radiation   = 'right: emissivity, T_inf'   (Stefan–Boltzmann σ = 5.670374e-11 mW/(mm² K⁴))
+   * A boundary not named is insulated. Flux, convection and radiation may be
+   * combined on one boundary; a Temperature boundary takes nothing else.
+   */
+  template <int dim>
+  class ThermalBoundaryConditions
+  {
+  public:
+    struct Boundary
+    {
+      std::string                                  name;
+      std::shared_ptr<dealii::FunctionParser<dim>> temperature, flux, h, T_convection,
+        emissivity, T_radiation;
+    };
+
+    /// Declares `subsection Boundary conditions` inside the current subsection (Heat).
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    /// Reads `Heat/Boundary conditions`; names resolve through @p geometry.
+    void parse_parameters(dealii::ParameterHandler &prm, const Scene &scene,
+                          const Geometry<dim> &geometry);
+
+    std::map<dealii::types::boundary_id, Boundary> boundaries;
+  };
+
+  /**
+   * The thermal half (seed eq. 26): ρc Ṫ = ρr − div q + sources, q = −k(T) ∇T,
+   * on the current configuration. Semi-discrete
+   *     M Ṫ = f(T, t) = −K(T) T + F(T, t),
+   * integrated over [tₙ, tₙ₊₁] by SUNDIALS ARKode (DIRK, see arkode_integrator.h)
+   * with our own linear solvers: M + γ∂(KT − F)/∂T by KLU or GMRES + AMG,
+   * M by CG + Jacobi (or the lumped diagonal).
+   *
+   * Dirichlet temperatures: the constrained dofs stay in ARKode's state with
+   * the equation Ṫᵢ = ġᵢ(t) (rows and columns of M decoupled, the coupling
+   * M_fD ġ_D moved to the free rows' right-hand side); at the end of every
+   * step they are set to g(tₙ₊₁) exactly. Hanging-node dofs get Ṫ = 0 and
+   * are distributed from their masters wherever T is read.
+   *
+   * Axisymmetric (dim = 2): x is the radius, every volume and boundary
+   * integral carries 2πr with r the current radius; heat flows are per full
+   * ring (mW).
+   */
+  template <int dim>
+  class ThermalProblem
+  {
+  public:
+    using Vector = dealii::TrilinosWrappers::MPI::Vector;
+    using CellIterator = typename dealii::DoFHandler<dim>::active_cell_iterator;
+
+    struct Parameters
+    {
+      std::string  initial_temperature = "293";
+      std::string  source              = ""; // mW/mm³, expression; empty: none
+      unsigned int polynomial_degree   = 1;
+      bool         axisymmetric        = false; // set by the caller (Mechanics/Two-dimensional model)
+      // Time integration
+      unsigned int order                 = 3;
+      double       relative_tolerance    = 1e-6;
+      double       absolute_tolerance    = 1e-6; // K
+      double       fixed_step_size       = 0;    // s, 0: adaptive
+      unsigned int max_internal_steps    = 5000;
+      unsigned int max_nonlinear_iterations = 10;
+      // Linear algebra
+      std::string  linear_solver       = "automatic"; // automatic|direct|iterative
+      bool         lumped_mass         = false;
+      unsigned int direct_solver_limit = 100000;
+
+      /// Declares `subsection Heat` (with Time integration, Linear solver and Boundary conditions).
+      static void declare_parameters(dealii::ParameterHandler &prm);
+      void        parse_parameters(dealii::ParameterHandler &prm, const Scene &scene);
+    };
+
+    /// What one solve_step did.
+    struct Statistics
+    {
+      bool         converged = false;
+      std::string  failure;
+      unsigned long internal_steps = 0, attempted_steps = 0, error_test_failures = 0,
+                    nonlinear_iterations = 0, nonlinear_failures = 0, linear_setups = 0,
+                    linear_solves = 0, linear_iterations = 0, mass_solves = 0,
+                    rhs_evaluations = 0;
+      double last_internal_step = 0;
+    };
+
+    /// Volumetric source per quadrature point of QGauss(p + 1) (p = Polynomial
+    /// degree of the temperature; the mechanics' quadrature when the degrees
+    /// match), in mW/mm³ = MPa/s, held constant over a step.
+    using HeatSource = std::function<double(const CellIterator &cell, unsigned int q)>;
+
+    ThermalProblem(const dealii::parallel::distributed::Triangulation<dim> &triangulation,
+                   const Parameters                                        &parameters,
+                   const ThermalBoundaryConditions<dim>                    &boundary_conditions,
+                   const std::map<dealii::types::material_id, ThermalMaterial> &materials,
+                   dealii::TimerOutput                                     &timer);
+    ~ThermalProblem();
+
+    /// Distribute dofs, build the sparsity, set T(t₀) from the initial expression.
+    void setup(double start_time = 0);
+
+    /// Use the deformed geometry x = X + u for every integral from now on
+    /// (the vector is copied; ghosted, on @p mechanics_dofs, an FESystem of dim FE_Q).
+    void set_configuration(const dealii::DoFHandler<dim> &mechanics_dofs,
+                           const Vector                  &displacement_ghosted);
+    void set_heat_source(const HeatSource &source);
+
+    /// Advance T from the committed state at @p time_old to @p time_new.
+    Statistics solve_step(double time_old, double time_new);
+    /// Accept the last solve_step (T becomes the committed state, heat flows accumulate).
+    void commit();
+    /// Forget the last solve_step (cut-back): T returns to the committed state.
+    void revert();
+
+    const dealii::DoFHandler<dim> &get_dof_handler() const { return dof_handler; }
+    const dealii::Mapping<dim>    &get_mapping() const;
+    const dealii::Quadrature<dim> &get_quadrature() const { return quadrature; }
+    /// Current (last solved) temperature, ghosted, K.
+    const Vector &temperature() const { return temperature_ghosted; }
+    /// Committed temperature, ghosted, K.
+    const Vector &old_temperature() const { return old_temperature_ghosted; }
+    /// Adds "temperature" to @p data_out.
+    void attach_output(dealii::DataOut<dim> &data_out) const;
+
+    /// ∫ ρ c T dv over the current configuration (N·mm = mJ).
+    double heat_content() const;
+    /// Heat that entered through each flux/convection/radiation boundary during
+    /// the last solve_step (mJ, trapezoidal in time).
+    const std::map<dealii::types::boundary_id, double> &step_boundary_heat() const
+    {
+      return step_heat_in;
+    }
+    /// Heat through all Temperature boundaries during the last step, from the
+    /// balance ΔH − sources − other boundaries (mJ).
+    double step_dirichlet_heat() const { return step_dirichlet_heat_in; }
+    /// ∫∫ sources dv dt during the last step (mJ).
+    double step_source_heat() const { return step_source; }
+    /// Accumulated over committed steps (mJ), per boundary id (Temperature
+    /// boundaries together under numbers::invalid_boundary_id) and sources.
+    const std::map<dealii::types::boundary_id, double> &boundary_heat_flow() const
+    {
+      return total_heat_in;
+    }
+    double source_heat() const { return total_source; }
+
+    /// T at the points of @p quadrature in @p cell (a cell of the shared
+    /// triangulation): the current and the committed values.
+    void temperature_at_quadrature_points(
+      const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
+      const dealii::Quadrature<dim>                                   &quadrature,
+      std::vector<double>                                             &T_new,
+      std::vector<double>                                             &T_old) const;
+
+  private:
+    struct Ode;
+    void   assemble_mass();
+    /// r = f(T, t) (if @p rhs) and A = ∂(K T − F)/∂T (if @p tangent), T from the owned @p y.
+    void   assemble(double t, const Vector &y, Vector *rhs, dealii::TrilinosWrappers::SparseMatrix *tangent);
+    /// Dirichlet values g(t) at the constrained dofs (locally relevant).
+    void   dirichlet_values(double t, std::map<dealii::types::global_dof_index, double> &values) const;
+    void   apply_dirichlet(double t, Vector &y) const;
+    std::map<dealii::types::boundary_id, double> boundary_flows(double t, const Vector &T_ghosted) const;
+    double source_power(double t) const;
+    double heat_content(const Vector &T_ghosted) const;
+    unsigned int solve_newton(Vector &x, const Vector &b, double tolerance);
+    unsigned int solve_mass(Vector &x, const Vector &b, double tolerance);
+    void   setup_newton(double gamma);
+
+    MPI_Comm                                                 mpi_communicator;
+    const dealii::parallel::distributed::Triangulation<dim> &triangulation;
+    const Parameters                                         parameters;
+    const ThermalBoundaryConditions<dim>                    &boundary_conditions;
+    std::map<dealii::types::material_id, ThermalMaterial>    materials;
+    dealii::TimerOutput                                     &timer;
+
+    dealii::FE_Q<dim>       fe;
+    dealii::MappingQ<dim>   reference_mapping;
+    std::unique_ptr<dealii::Mapping<dim>> current_mapping;
+    Vector                  configuration; // ghosted displacement behind current_mapping
+    dealii::DoFHandler<dim> dof_handler;
+    dealii::QGauss<dim>     quadrature;
+    dealii::QGauss<dim - 1> face_quadrature;
+    dealii::IndexSet        locally_owned_dofs, locally_relevant_dofs;
+    dealii::AffineConstraints<double> constraints; // hanging + Dirichlet, homogeneous
+    dealii::AffineConstraints<double> hanging;     // hanging only, for distribute()
+    std::vector<dealii::types::global_dof_index> dirichlet_dofs; // owned
+    std::vector<bool> is_dirichlet;                // by local index in locally_relevant_dofs
+
+    std::shared_ptr<dealii::FunctionParser<dim>> initial_function, source_function;
+    HeatSource heat_source;
+
+    dealii::TrilinosWrappers::SparseMatrix mass_matrix, tangent_matrix, newton_matrix;
+    Vector lumped_mass, mass_diagonal;
+    std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG>    newton_amg;
+    std::unique_ptr<dealii::TrilinosWrappers::SolverDirect>       newton_direct;
+    dealii::SolverControl                                         direct_control;
+    dealii::TrilinosWrappers::PreconditionJacobi                  mass_jacobi;
+    bool   operators_current = false, use_direct = true, linear = true;
+    double current_gamma = -1;
+    double step_length = 1; // of the current solve_step (for ġ)
+    double last_internal_step = 0;
+    bool   has_dirichlet = false;
+    unsigned long linear_iterations = 0, mass_solves = 0;
+
+    Vector solution, old_solution;                       // owned
+    Vector temperature_ghosted, old_temperature_ghosted; // ghosted
+    mutable Vector scratch_ghosted;
+    double committed_time = 0;
+
+    std::map<dealii::types::boundary_id, double> step_heat_in, total_heat_in;
+    double step_dirichlet_heat_in = 0, step_source = 0, total_source = 0;
+
+    mutable std::unique_ptr<dealii::FEValues<dim>> point_values;
+    mutable std::unique_ptr<dealii::Quadrature<dim>> point_quadrature;
+  };
+} // namespace anvil

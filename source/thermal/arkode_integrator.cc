@@ -1,0 +1,194 @@
+// The ARKode adapter: the only file of anvil that includes SUNDIALS. deal.II
+// 9.4's SUNDIALS::ARKode callbacks return int (0 ok, > 0 recoverable, < 0
+// fatal); from 9.5 they return void and throw. Keep it that way: one adapter.
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/sundials/arkode.h>
+
+#include <arkode/arkode_arkstep.h>
+
+#include "arkode_integrator.h"
+
+#include <cmath>
+#include <exception>
+#include <string>
+
+namespace anvil
+{
+  namespace thermal
+  {
+    using namespace dealii;
+
+    namespace
+    {
+      /// Thrown from output_step (C++ context, outside SUNDIALS) when ARKStepEvolve
+      /// returned before the end time: deal.II 9.4 does not check the status in release mode.
+      struct EvolveFailed : std::runtime_error
+      {
+        using std::runtime_error::runtime_error;
+      };
+
+      /// Run @p f, turning exceptions into ARKode return codes (they must not
+      /// unwind through SUNDIALS' C frames).
+      template <typename F>
+      int guarded(std::string &message, F &&f)
+      {
+        try
+          {
+            return f();
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            message = "a linear solver did not converge (" + std::to_string(e.last_step) +
+                      " iterations, residual " + std::to_string(e.last_residual) + ")";
+            return 1;
+          }
+        catch (const std::exception &e)
+          {
+            message = e.what();
+            return -1;
+          }
+        catch (...)
+          {
+            message = "unknown exception in an ARKode callback";
+            return -1;
+          }
+      }
+
+      /// (M − γJ)⁻¹ of the system as a deal.II preconditioner.
+      struct NewtonPreconditioner
+      {
+        ImplicitSystem &system;
+        unsigned long  &inner_iterations;
+        void            vmult(Vector &x, const Vector &b) const
+        {
+          const int n = system.solve_newton_matrix(x, b);
+          if (n < 0)
+            throw SolverControl::NoConvergence(0, 0);
+          inner_iterations += n;
+        }
+      };
+    } // namespace
+
+    IntegratorStatistics integrate(ImplicitSystem &system, Vector &y, const double t0,
+                                   const double t1, const IntegratorSettings &settings)
+    {
+      IntegratorStatistics stats;
+      const double         span = t1 - t0;
+
+      SUNDIALS::ARKode<Vector>::AdditionalData data(t0, t1, span, span,
+                                                    /*minimum_step_size*/ 1e-14 * span,
+                                                    settings.order,
+                                                    settings.max_nonlinear_iterations,
+                                                    /*implicit_function_is_linear*/ false,
+                                                    /*implicit_function_is_time_independent*/ false,
+                                                    /*mass_is_time_independent*/ true,
+                                                    /*anderson_acceleration_subspace*/ 3,
+                                                    settings.absolute_tolerance,
+                                                    settings.relative_tolerance);
+      SUNDIALS::ARKode<Vector> ode(data, y.get_mpi_communicator());
+      std::string              message;
+
+      ode.reinit_vector = [&](Vector &v) { system.reinit_vector(v); };
+      ode.implicit_function = [&](const double t, const Vector &u, Vector &f) {
+        return guarded(message, [&] { return system.rhs(t, u, f); });
+      };
+      ode.jacobian_times_setup = [&](const double t, const Vector &u, const Vector &) {
+        return guarded(message, [&] { return system.setup_jacobian(t, u); });
+      };
+      ode.jacobian_times_vector = [&](const Vector &v, Vector &Jv, double, const Vector &,
+                                      const Vector &) {
+        return guarded(message, [&] { return system.jacobian_vmult(v, Jv); });
+      };
+      // γ reaches only the preconditioner setup: build M − γJ there.
+      ode.jacobian_preconditioner_setup = [&](double t, const Vector &u, const Vector &, int jok,
+                                              int &jcur, double gamma) {
+        return guarded(message, [&] {
+          jcur = 0;
+          if (!jok)
+            {
+              const int e = system.setup_jacobian(t, u);
+              if (e != 0)
+                return e;
+              jcur = 1;
+            }
+          ++stats.linear_setups;
+          return system.setup_newton_matrix(gamma);
+        });
+      };
+      ode.jacobian_preconditioner_solve = [&](double, const Vector &, const Vector &,
+                                              const Vector &r, Vector &z, double, double, int) {
+        return guarded(message, [&] { return system.solve_newton_matrix(z, r) < 0 ? 1 : 0; });
+      };
+      // Newton systems: right-preconditioned GMRES on ARKode's exact M − γJ
+      // (op knows the current γ), preconditioned by our factorisation of M − γ'J
+      // (γ' from the last setup): one iteration while γ is unchanged. tol is
+      // ARKode's absolute bound on |b − Ax|₂.
+      ode.solve_linearized_system = [&](SUNDIALS::SundialsOperator<Vector> &op,
+                                        SUNDIALS::SundialsPreconditioner<Vector> &,
+                                        Vector &x, const Vector &b, double tol) {
+        return guarded(message, [&] {
+          ++stats.linear_solves;
+          x = 0;
+          SolverControl control(200, std::max(tol, 1e-15 * b.l2_norm()));
+          SolverGMRES<Vector> gmres(control, SolverGMRES<Vector>::AdditionalData(30, true));
+          NewtonPreconditioner preconditioner{system, stats.linear_iterations};
+          gmres.solve(op, x, b, preconditioner);
+          return 0;
+        });
+      };
+      ode.mass_times_setup  = [](const double) { return 0; };
+      ode.mass_times_vector = [&](const double, const Vector &v, Vector &Mv) {
+        return guarded(message, [&] { return system.mass_vmult(v, Mv); });
+      };
+      ode.solve_mass = [&](SUNDIALS::SundialsOperator<Vector> &, SUNDIALS::SundialsPreconditioner<Vector> &,
+                           Vector &x, const Vector &b, double tol) {
+        return guarded(message, [&] {
+          ++stats.mass_solves;
+          return system.solve_mass(x, b, tol);
+        });
+      };
+      ode.custom_setup = [&](void *mem) {
+        ARKStepSetMaxNumSteps(mem, settings.max_internal_steps);
+        ARKStepSetInterpolantType(mem, ARK_INTERP_LAGRANGE);
+        ARKStepSetStopTime(mem, t1);
+        if (settings.fixed_step_size > 0)
+          {
+            // Whole number of steps: h = span / ceil(span / h_fixed).
+            const double n = std::max(1., std::ceil(span / settings.fixed_step_size - 1e-9));
+            ARKStepSetFixedStep(mem, span / n);
+          }
+        else
+          ARKStepSetInitStep(mem, settings.initial_step_size > 0 ?
+                                    std::min(settings.initial_step_size, span) : 0.);
+      };
+      ode.output_step = [&](const double t, const Vector &, const unsigned int step) {
+        if (step > 0 && std::abs(t - t1) > 1e-12 * std::max(std::abs(t1), span))
+          throw EvolveFailed("ARKode stopped at t = " + std::to_string(t));
+      };
+
+      try
+        {
+          ode.solve_ode(y);
+          stats.success = true;
+        }
+      catch (const std::exception &e)
+        {
+          stats.success = false;
+          stats.failure = message.empty() ? std::string(e.what()) :
+                                            std::string(e.what()) + ": " + message;
+        }
+
+      void *mem = ode.get_arkode_memory();
+      long  n   = 0, nfe = 0, nfi = 0;
+      ARKStepGetNumSteps(mem, &n), stats.steps = n;
+      ARKStepGetNumStepAttempts(mem, &n), stats.attempts = n;
+      ARKStepGetNumErrTestFails(mem, &n), stats.error_test_failures = n;
+      ARKStepGetNumNonlinSolvIters(mem, &n), stats.nonlinear_iterations = n;
+      ARKStepGetNumNonlinSolvConvFails(mem, &n), stats.nonlinear_failures = n;
+      ARKStepGetNumRhsEvals(mem, &nfe, &nfi), stats.rhs_evaluations = nfi;
+      ARKStepGetLastStep(mem, &stats.last_step);
+      return stats;
+    }
+  } // namespace thermal
+} // namespace anvil

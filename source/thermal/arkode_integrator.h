@@ -1,0 +1,73 @@
+#pragma once
+
+// The one place that knows SUNDIALS exists (see arkode_integrator.cc).
+
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <string>
+
+namespace anvil
+{
+  namespace thermal
+  {
+    using Vector = dealii::TrilinosWrappers::MPI::Vector;
+
+    /**
+     * A stiff system M ẏ = f(t, y) with a constant mass matrix M, as ARKode's
+     * implicit part sees it. Every method returns 0 on success, > 0 for a
+     * recoverable failure (ARKode retries with a smaller step), < 0 fatal;
+     * exceptions are caught by the integrator (SolverControl::NoConvergence
+     * counts as recoverable).
+     */
+    class ImplicitSystem
+    {
+    public:
+      virtual ~ImplicitSystem() = default;
+      virtual void reinit_vector(Vector &v) const = 0;
+      virtual int  rhs(double t, const Vector &y, Vector &f) = 0;
+      /// Assemble J = ∂f/∂y at (t, y).
+      virtual int  setup_jacobian(double t, const Vector &y) = 0;
+      virtual int  jacobian_vmult(const Vector &v, Vector &Jv) = 0;
+      /// Build (and factor) an approximation of M − γJ with the last J.
+      virtual int  setup_newton_matrix(double gamma) = 0;
+      /// x ≈ (M − γJ)⁻¹ b with the matrix of the last setup_newton_matrix;
+      /// returns the number of inner iterations (≥ 1) or a negative error.
+      virtual int  solve_newton_matrix(Vector &x, const Vector &b) = 0;
+      virtual int  mass_vmult(const Vector &v, Vector &Mv) = 0;
+      /// x = M⁻¹ b to the absolute residual tolerance @p tol.
+      virtual int  solve_mass(Vector &x, const Vector &b, double tol) = 0;
+    };
+
+    struct IntegratorSettings
+    {
+      unsigned int order                    = 3; // DIRK: 2, 3, 4 or 5
+      double       relative_tolerance       = 1e-6;
+      double       absolute_tolerance       = 1e-6;
+      double       fixed_step_size          = 0; // 0: adaptive
+      double       initial_step_size        = 0; // 0: ARKode's estimate
+      unsigned int max_internal_steps       = 5000;
+      unsigned int max_nonlinear_iterations = 10;
+    };
+
+    struct IntegratorStatistics
+    {
+      bool          success = false;
+      std::string   failure;
+      unsigned long steps = 0, attempts = 0, error_test_failures = 0, nonlinear_iterations = 0,
+                    nonlinear_failures = 0, linear_setups = 0, linear_solves = 0,
+                    linear_iterations = 0, rhs_evaluations = 0, mass_solves = 0;
+      double last_step = 0;
+    };
+
+    /**
+     * Integrate @p system from (t0, y) to t1 with ARKode's implicit DIRK of
+     * the given order (SUNDIALS' default table for that order), Newton with
+     * our own linear solver (GMRES on ARKode's exact M − γJ, preconditioned
+     * by system.solve_newton_matrix), and our own mass solver. A fresh ARKode
+     * object per call, i.e. reset at t0: operators may change between calls.
+     * @p y holds y(t0) on entry and y(t1) on successful return.
+     */
+    IntegratorStatistics integrate(ImplicitSystem &system, Vector &y, double t0, double t1,
+                                   const IntegratorSettings &settings);
+  } // namespace thermal
+} // namespace anvil
