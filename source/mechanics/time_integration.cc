@@ -1,0 +1,196 @@
+// Time integration of MechanicalProblem: the generalized-α dynamics
+// (Chung & Hulbert 1993), accepting a step (Newmark update, energy audit) and
+// the energies of the state.
+#include <deal.II/base/function_parser.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <anvil/core/expression.h>
+#include <anvil/core/scene.h>
+#include <anvil/mechanics/mechanical_problem.h>
+
+#include <cmath>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  template <int dim>
+  void MechanicalProblem<dim>::setup_dynamics()
+  {
+    // Generalized-α (Chung & Hulbert 1993) from the spectral radius ρ∞.
+    const double rho = parameters.spectral_radius;
+    alpha_m          = (2 * rho - 1) / (rho + 1);
+    alpha_f          = rho / (rho + 1);
+    newmark_gamma    = 0.5 - alpha_m + alpha_f;
+    newmark_beta     = 0.25 * (1 - alpha_m + alpha_f) * (1 - alpha_m + alpha_f);
+
+    // Initial velocity at the dofs' support points.
+    if (!parameters.initial_velocity.empty())
+      {
+        std::vector<std::shared_ptr<FunctionParser<dim>>> v(dim);
+        for (const auto &assignment : split_outside_parentheses(parameters.initial_velocity, ','))
+          {
+            const auto eq = assignment.find('=');
+            const auto c  = trim(assignment.substr(0, eq));
+            for (unsigned int d = 0; d < dim; ++d)
+              if (c == std::string("u") + "xyz"[d])
+                v[d] = parse_expression<dim>(trim(assignment.substr(eq + 1)), Scene(),
+                                             "Mechanics/Dynamics/Initial velocity");
+          }
+        std::map<types::global_dof_index, Point<dim>> support;
+        DoFTools::map_dofs_to_support_points(mapping, dof_handler, support);
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+              cell->get_dof_indices(dofs);
+              for (unsigned int i = 0; i < dofs.size(); ++i)
+                {
+                  const unsigned int c = fe.system_to_component_index(i).first;
+                  if (v[c] && locally_owned_dofs.is_element(dofs[i]))
+                    velocity_old(dofs[i]) = v[c]->value(support[dofs[i]]);
+                }
+            }
+        velocity_old.compress(VectorOperation::insert);
+      }
+    velocity_old_ghosted = velocity_old;
+    velocity_ghosted     = velocity_old;
+
+    // Initial acceleration from M a₀ = f_ext(0) − f_int(u₀) with the lumped
+    // mass (exact for a uniform body force on a free body; zero at rest).
+    current_time_step = 1;
+    assemble(false, 0);
+    TrilinosWrappers::MPI::Vector lumped(locally_owned_dofs, mpi_communicator);
+    lumped_mass(lumped);
+    for (const auto i : locally_owned_dofs)
+      if (!constraints.is_constrained(i) && lumped(i) > 0)
+        acceleration_old(i) = (external_force(i) - internal_force(i)) / lumped(i);
+    acceleration_old.compress(VectorOperation::insert);
+    acceleration_old_ghosted = acceleration_old;
+    static_residual_old      = internal_force;
+    static_residual_old -= external_force;
+    energy_audit.kinetic = energy_audit.initial_kinetic = kinetic_energy(velocity_ghosted);
+  }
+
+  template <int dim>
+  double MechanicalProblem<dim>::elastic_strain_energy() const
+  {
+    FEValues<dim> fe_values(mapping, fe, quadrature,
+                            update_gradients | update_values | update_JxW_values |
+                              update_quadrature_points);
+    const unsigned int                   n_q = quadrature.size();
+    std::vector<Tensor<2, dim>>          grad_u(n_q);
+    std::vector<Tensor<1, dim>>          u_values(n_q);
+    const FEValuesExtractors::Vector     displacements(0);
+    double                               energy = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values[displacements].get_function_gradients(solution, grad_u);
+          fe_values[displacements].get_function_values(solution, u_values);
+          const auto  &m = *materials.at(cell->material_id());
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const double R = axisymmetric ? fe_values.quadrature_point(q)[0] : 1.;
+              const double J = determinant(
+                deformation_gradient(grad_u[q], axisymmetric ? u_values[q][0] : 0., R));
+              const auto  &sigma = points[cell->active_cell_index() * n_q + q]->stress();
+              const double p     = trace(sigma) / 3;
+              const auto   s     = deviator(sigma);
+              energy += 0.5 * (p * p / m.bulk_modulus() + (s * s) / (2 * m.shear_modulus())) * J *
+                        fe_values.JxW(q) * (axisymmetric ? 2 * numbers::PI * R : 1.);
+            }
+        }
+    return Utilities::MPI::sum(energy, mpi_communicator);
+  }
+
+  template <int dim>
+  double MechanicalProblem<dim>::newmark_acceleration(const double u, const double u_old,
+                                                      const double v_old, const double a_old) const
+  {
+    const double dt = current_time_step;
+    return (u - u_old - dt * v_old) / (newmark_beta * dt * dt) -
+           (0.5 - newmark_beta) / newmark_beta * a_old;
+  }
+
+  template <int dim>
+  double MechanicalProblem<dim>::Energy::balance_error() const
+  {
+    const double residual = external_work - internal_work - (kinetic - initial_kinetic);
+    const double scale    = std::max({std::abs(external_work), std::abs(internal_work),
+                                      std::abs(kinetic), std::abs(initial_kinetic), 1e-300});
+    return std::abs(residual) / scale;
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::commit_step()
+  {
+    TrilinosWrappers::MPI::Vector du(owned_solution);
+    du -= owned_old_solution;
+
+    if (parameters.dynamic)
+      {
+        // Newmark update of a and v from the converged u.
+        TrilinosWrappers::MPI::Vector a(acceleration_old), v(velocity_old);
+        const double                  dt = current_time_step;
+        for (const auto i : locally_owned_dofs)
+          {
+            a(i) = newmark_acceleration(owned_solution(i), owned_old_solution(i), velocity_old(i),
+                                        acceleration_old(i));
+            v(i) = velocity_old(i) + dt * ((1 - newmark_gamma) * acceleration_old(i) +
+                                           newmark_gamma * a(i));
+          }
+        a.compress(VectorOperation::insert);
+        v.compress(VectorOperation::insert);
+        acceleration_old         = a;
+        velocity_old             = v;
+        acceleration_old_ghosted = a;
+        velocity_old_ghosted     = v;
+        velocity_ghosted         = v;
+        static_residual_old      = internal_force;
+        static_residual_old -= external_force;
+        energy_audit.kinetic = kinetic_energy(velocity_ghosted);
+      }
+
+    // Work of loads and supports (trapezoidal): the supports' reactions are
+    // r = f_int + M a − f_ext at the constrained dofs (zero elsewhere).
+    reaction_force = internal_force;
+    reaction_force += inertia_force;
+    reaction_force -= external_force;
+    TrilinosWrappers::MPI::Vector mean(external_force);
+    mean += external_force_old;
+    mean += reaction_force;
+    mean += reaction_force_old;
+    energy_audit.external_work += 0.5 * (mean * du);
+    mean = internal_force;
+    mean += internal_force_old;
+    energy_audit.internal_work += 0.5 * (mean * du);
+    energy_audit.stress_work += step_internal_work;
+    energy_audit.plastic_work += step_plastic_work;
+    energy_audit.elastic_energy = elastic_strain_energy();
+
+    previous_increment = du;
+    previous_time_step = current_time_step;
+    for (auto &p : points)
+      if (p)
+        p->commit();
+    owned_old_solution = owned_solution;
+    old_solution       = owned_solution;
+    internal_force_old = internal_force;
+    external_force_old = external_force;
+    reaction_force_old = reaction_force;
+  }
+
+  template void MechanicalProblem<2>::setup_dynamics();
+  template void MechanicalProblem<3>::setup_dynamics();
+  template double MechanicalProblem<2>::newmark_acceleration(double, double, double, double) const;
+  template double MechanicalProblem<3>::newmark_acceleration(double, double, double, double) const;
+  template double MechanicalProblem<2>::elastic_strain_energy() const;
+  template double MechanicalProblem<3>::elastic_strain_energy() const;
+  template void MechanicalProblem<2>::commit_step();
+  template void MechanicalProblem<3>::commit_step();
+  template double MechanicalProblem<2>::Energy::balance_error() const;
+  template double MechanicalProblem<3>::Energy::balance_error() const;
+} // namespace anvil
