@@ -10,8 +10,11 @@ namespace anvil
 
   template <int dim>
   std::shared_ptr<FunctionParser<dim>> parse_expression(const std::string &expression,
+                                                        const std::string &variables,
+                                                        const bool         time_dependent,
                                                         const Scene       &scene,
-                                                        const std::string &path)
+                                                        const std::string &path,
+                                                        const std::string &what)
   {
     auto f = std::make_shared<FunctionParser<dim>>(1);
     // deal.II prints muparser's diagnosis to std::cerr before it throws:
@@ -21,7 +24,7 @@ namespace anvil
     bool               ok          = true;
     try
       {
-        f->initialize((dim == 2 ? std::string("x,y,t") : std::string("x,y,z,t")), expression, {{"pi", numbers::PI}}, true);
+        f->initialize(variables, expression, {{"pi", numbers::PI}}, time_dependent);
         f->value(Point<dim>()); // muparser reports unknown names on first evaluation
       }
     catch (...)
@@ -31,20 +34,31 @@ namespace anvil
     std::cerr.rdbuf(cerr_buffer);
     if (!ok)
       {
-        std::string reason;
+        std::string       reason;
         const std::string text = diagnosis.str();
         const auto        m    = text.find("Message:");
         if (m != std::string::npos)
           reason = trim(text.substr(m + 8, text.find('\n', m) - m - 8));
         scene.fail(path, "has an invalid expression '" + expression + "'" +
+                           (what.empty() ? "" : " for " + what) +
                            (reason.empty() ? "" : " (" + reason + ")") +
-                           ": expected a muparser formula in " + (dim == 2 ? std::string("x,y,t") : std::string("x,y,z,t")) +
-                           " (e.g. 0.5*t or if(t<1, t, 1))");
+                           ": expected a muparser formula in " + variables +
+                           " (e.g. 0.5*t or if(t<1, t, 1), constant pi)");
       }
     return f;
   }
 
+  template <int dim>
+  std::shared_ptr<FunctionParser<dim>> parse_expression(const std::string &expression,
+                                                        const Scene       &scene,
+                                                        const std::string &path)
+  {
+    return parse_expression<dim>(expression, dim == 2 ? "x,y,t" : "x,y,z,t", true, scene, path, "");
+  }
 
+  template std::shared_ptr<FunctionParser<1>> parse_expression<1>(const std::string &, const std::string &, bool, const Scene &, const std::string &, const std::string &);
+  template std::shared_ptr<FunctionParser<2>> parse_expression<2>(const std::string &, const std::string &, bool, const Scene &, const std::string &, const std::string &);
+  template std::shared_ptr<FunctionParser<3>> parse_expression<3>(const std::string &, const std::string &, bool, const Scene &, const std::string &, const std::string &);
   template std::shared_ptr<FunctionParser<2>> parse_expression<2>(const std::string &, const Scene &, const std::string &);
   template std::shared_ptr<FunctionParser<3>> parse_expression<3>(const std::string &, const Scene &, const std::string &);
 } // namespace anvil

@@ -3,6 +3,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <anvil/core/input_error.h>
+#include <anvil/core/expression.h>
 #include <anvil/core/scene.h>
 #include <anvil/material/point_driver.h>
 #include <anvil/mechanics/kinematics.h>
@@ -254,35 +255,7 @@ namespace anvil
                                                              const std::string &path,
                                                              const std::string &what) const
   {
-    auto f = std::make_shared<FunctionParser<1>>(1);
-    // deal.II prints muparser's diagnosis to std::cerr before it throws:
-    // capture it for a one-line message.
-    std::ostringstream diagnosis;
-    std::streambuf    *cerr_buffer = std::cerr.rdbuf(diagnosis.rdbuf());
-    bool               ok          = true;
-    try
-      {
-        f->initialize("t", expression, {{"pi", numbers::PI}}, false);
-        f->value(Point<1>(0.)); // muparser reports unknown names on first evaluation
-      }
-    catch (...)
-      {
-        ok = false;
-      }
-    std::cerr.rdbuf(cerr_buffer);
-    if (!ok)
-      {
-        std::string       reason;
-        const std::string text = diagnosis.str();
-        const auto        m    = text.find("Message:");
-        if (m != std::string::npos)
-          reason = trim(text.substr(m + 8, text.find('\n', m) - m - 8));
-        scene.fail(path, "has an invalid expression '" + expression + "'" +
-                           (what.empty() ? "" : " for " + what) +
-                           (reason.empty() ? "" : " (" + reason + ")") +
-                           ": expected a muparser formula in t (e.g. 0.01*t or "
-                           "if(t<1, t, 1), constant pi)");
-      }
+    auto f = parse_expression<1>(expression, "t", false, scene, path, what);
     return f;
   }
 
