@@ -5,6 +5,8 @@
 #include <anvil/core/simulator.h>
 #include <anvil/material/material_point.h>
 
+#include <deal.II/fe/fe_values.h>
+
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
@@ -26,6 +28,28 @@ namespace anvil
         prm.leave_subsection();
       }
     prm.leave_subsection();
+
+    prm.enter_subsection("Bodies");
+    for (const auto &name : body_names)
+      {
+        prm.enter_subsection(name);
+        prm.enter_subsection("Material");
+        ThermalMaterial::declare_parameters(prm);
+        prm.leave_subsection();
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+
+    prm.enter_subsection("Physics");
+    prm.declare_entry("Heat", "false", Patterns::Bool(),
+                      "Solve the heat equation (seed eq. 26) on the deforming bodies: a temperature "
+                      "field, its ARKode integrator and the coupling exist only if this is on.");
+    prm.declare_entry("Coupling", "isothermal split", Patterns::Selection("isothermal split"),
+                      "Operator split of the thermomechanical step (seed sec. 2.2): isothermal split "
+                      "(mechanics at fixed temperature, then heat at fixed geometry with the "
+                      "mechanical heat sources of the step).");
+    prm.leave_subsection();
+    ThermalProblem<dim>::Parameters::declare_parameters(prm);
 
     Geometry<dim>::declare_parameters(prm);
     MechanicalProblem<dim>::Parameters::declare_parameters(prm);
@@ -99,6 +123,30 @@ namespace anvil
     prm.leave_subsection();
 
     mechanics_parameters.parse_parameters(prm, scene);
+    prm.enter_subsection("Physics");
+    heat     = prm.get_bool("Heat");
+    coupling = prm.get("Coupling");
+    prm.leave_subsection();
+    if (heat)
+      {
+        thermal_parameters.parse_parameters(prm, scene);
+        thermal_parameters.axisymmetric = mechanics_parameters.axisymmetric;
+        thermal_boundary_conditions.parse_parameters(prm, scene, geometry);
+        prm.enter_subsection("Bodies");
+        for (const auto &name : scene.body_names())
+          {
+            const auto id = geometry.body_id(name, scene.where("Bodies/Names"));
+            prm.enter_subsection(name);
+            prm.enter_subsection("Material");
+            thermal_materials[id] =
+              ThermalMaterial::parse_parameters(prm, scene, "Bodies/" + name + "/Material",
+                                                materials[id]->density(),
+                                                materials[id]->heat_capacity());
+            prm.leave_subsection();
+            prm.leave_subsection();
+          }
+        prm.leave_subsection();
+      }
     boundary_conditions.parse_parameters(prm, scene, geometry);
 
     prm.enter_subsection("Time");
@@ -144,6 +192,24 @@ namespace anvil
     mechanical = std::make_unique<MechanicalProblem<dim>>(triangulation, mechanics_parameters,
                                                           boundary_conditions, materials, *timer);
     mechanical->setup();
+    if (heat)
+      {
+        thermal = std::make_unique<ThermalProblem<dim>>(triangulation, thermal_parameters,
+                                                        thermal_boundary_conditions,
+                                                        thermal_materials, *timer);
+        thermal->setup(0);
+        temperature_before = thermal->temperature();
+        initial_heat_content = thermal->heat_content();
+        mechanical->set_temperature_field(
+          [this](const typename Triangulation<dim>::active_cell_iterator &cell,
+                 std::vector<double> &T_new, std::vector<double> &T_old) {
+            mechanics_temperatures(cell, T_new, T_old);
+          });
+        thermal->set_heat_source([this](const typename DoFHandler<dim>::active_cell_iterator &cell,
+                                        const unsigned int q) {
+          return mechanical->heat_source(cell, q);
+        });
+      }
     double t  = 0;
     double dt = time.time_step;
     if (!restart_directory.empty())
@@ -211,6 +277,35 @@ namespace anvil
             continue;
           }
 
+        if (heat)
+          {
+            // Isothermal split: heat at the new geometry with this step's sources.
+            thermal->set_configuration(mechanical->get_dof_handler(), mechanical->displacement());
+            const auto stats = thermal->solve_step(t, t + step);
+            n_thermal_steps += stats.internal_steps;
+            if (!stats.converged)
+              {
+                thermal->revert();
+                mechanical->revert_step();
+                ++n_cut_backs;
+                dt = step / 2;
+                if (!quiet)
+                  pcout << "  heat step at t = " << t + step << " s failed: " << stats.failure
+                        << "; cutting back to dt = " << dt << " s" << std::endl;
+                if (dt < time.minimum_time_step * (1 - 1e-12))
+                  {
+                    status = "failed at t = " + Utilities::to_string(t + step) + " s: " +
+                             stats.failure + "; minimum time step reached";
+                    write_fields(t, n_steps);
+                    write_summary(status);
+                    failure_reason = status;
+                    return false;
+                  }
+                continue;
+              }
+            temperature_before = thermal->old_temperature();
+            thermal->commit();
+          }
         mechanical->commit_step();
         last_accepted_step = step;
         t            = t + step;
@@ -251,6 +346,24 @@ namespace anvil
           pcout << "  " << name << " = " << std::setprecision(10) << value << std::endl;
       }
     return true;
+  }
+
+  template <int dim>
+  void Simulator<dim>::mechanics_temperatures(
+    const typename Triangulation<dim>::active_cell_iterator &cell,
+    std::vector<double>                                     &T_new,
+    std::vector<double>                                     &T_old) const
+  {
+    // The thermal problem's committed T_n and the T_{n-1} before it.
+    std::vector<double> current(T_new.size());
+    thermal->temperature_at_quadrature_points(cell, mechanical->get_quadrature(), current, T_new);
+    FEValues<dim> fe_values(thermal->get_dof_handler().get_fe(), mechanical->get_quadrature(),
+                            update_values);
+    const typename DoFHandler<dim>::active_cell_iterator dof_cell(&triangulation, cell->level(),
+                                                                  cell->index(),
+                                                                  &thermal->get_dof_handler());
+    fe_values.reinit(dof_cell);
+    fe_values.get_function_values(temperature_before, T_old);
   }
 
   template class Simulator<2>;

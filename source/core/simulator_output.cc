@@ -235,6 +235,8 @@ namespace anvil
     if (mechanical->is_dynamic())
       data_out.add_data_vector(mechanical->velocity(), std::vector<std::string>(dim, "velocity"),
                                DataOut<dim>::type_dof_data, interpretation);
+    if (thermal)
+      data_out.add_data_vector(thermal->get_dof_handler(), thermal->temperature(), "temperature");
     const auto fields = mechanical->cell_fields();
     for (unsigned int i = 0; i < fields.names.size(); ++i)
       data_out.add_data_vector(fields.values[i], fields.names[i], DataOut<dim>::type_cell_data);
@@ -400,6 +402,12 @@ namespace anvil
     s.set("energy", "elastic_energy", e.elastic_energy);
     s.set("energy", "stress_work", e.stress_work);
     s.set("energy", "balance_error", e.balance_error());
+    if (thermal)
+      {
+        s.set("heat", "heat_content", thermal->heat_content());
+        s.set("heat", "heat_content_change", thermal->heat_content() - initial_heat_content);
+        s.set("heat", "arkode_internal_steps", double(n_thermal_steps));
+      }
     for (const auto &[name, value] : qoi_values)
       s.set("quantities_of_interest", name, value);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)

@@ -248,6 +248,7 @@ namespace anvil
     const unsigned int n_q = quadrature.size();
     points.clear();
     points.resize(triangulation.n_active_cells() * n_q);
+    heat_sources.assign(triangulation.n_active_cells() * n_q, 0.);
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         {

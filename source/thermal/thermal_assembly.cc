@@ -49,7 +49,9 @@ namespace anvil
     TimerOutput::Scope t(timer, "Heat: mass matrix");
     mass_matrix    = 0;
     lumped_mass    = 0;
-    FEValues<dim> fe_values(get_mapping(), fe, quadrature,
+    // Mass is conserved: ρ dv = ρ₀ dV, so the capacity is integrated on the
+    // reference configuration whatever the current one.
+    FEValues<dim> fe_values(reference_mapping, fe, quadrature,
                             update_values | update_JxW_values | update_quadrature_points);
     const unsigned int n = fe.n_dofs_per_cell();
     FullMatrix<double>                   local(n, n);
@@ -136,6 +138,8 @@ namespace anvil
 
     const UpdateFlags flags = update_values | update_gradients | update_JxW_values | update_quadrature_points;
     FEValues<dim>     fe_values(get_mapping(), fe, quadrature, flags);
+    FEValues<dim>     fe_reference(reference_mapping, fe, quadrature,
+                               update_JxW_values | update_quadrature_points);
     FEFaceValues<dim> fe_face(get_mapping(), fe, face_quadrature,
                               update_values | update_JxW_values | update_quadrature_points);
     const unsigned int n = fe.n_dofs_per_cell(), nq = quadrature.size();
@@ -150,6 +154,8 @@ namespace anvil
       if (cell->is_locally_owned())
         {
           fe_values.reinit(cell);
+          if (coupling)
+            fe_reference.reinit(cell);
           cell->get_dof_indices(dofs);
           fe_values.get_function_values(T, T_q);
           fe_values.get_function_gradients(T, grad_T);
@@ -165,6 +171,11 @@ namespace anvil
               }
           const auto  &m  = materials.at(cell->material_id());
           const double rc = m.density * m.heat_capacity;
+          // The capacity per current volume is ρ₀c dV/dv (mass conservation).
+          auto reference_weight = [&](const unsigned int q) {
+            return fe_reference.JxW(q) *
+                   (axi ? 2 * numbers::PI * fe_reference.quadrature_point(q)[0] : 1.);
+          };
           for (unsigned int q = 0; q < nq; ++q)
             {
               const Point<dim> &x = fe_values.quadrature_point(q);
@@ -178,7 +189,8 @@ namespace anvil
                   double rc_g_dot = 0;
                   if (any_g_dot)
                     for (unsigned int j = 0; j < n; ++j)
-                      rc_g_dot += rc * fe_values.shape_value(j, q) * local_g_dot(j);
+                      rc_g_dot += rc * reference_weight(q) / w * fe_values.shape_value(j, q) *
+                                  local_g_dot(j);
                   for (unsigned int i = 0; i < n; ++i)
                     local_f(i) += (-k * (fe_values.shape_grad(i, q) * grad_T[q]) +
                                    fe_values.shape_value(i, q) * (s - rc_g_dot)) * w;
@@ -398,7 +410,8 @@ namespace anvil
   template <int dim>
   double ThermalProblem<dim>::heat_content(const Vector &T) const
   {
-    FEValues<dim> fe_values(get_mapping(), fe, quadrature,
+    // ∫ ρ c T dv = ∫ ρ₀ c T dV (mass conservation).
+    FEValues<dim> fe_values(reference_mapping, fe, quadrature,
                             update_values | update_JxW_values | update_quadrature_points);
     std::vector<double> T_q(quadrature.size());
     double              H = 0;

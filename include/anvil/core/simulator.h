@@ -10,6 +10,7 @@
 #include <anvil/mechanics/boundary_conditions.h>
 #include <anvil/mechanics/mechanical_problem.h>
 #include <anvil/output/csv_history.h>
+#include <anvil/thermal/thermal_problem.h>
 
 #include <memory>
 #include <string>
@@ -88,6 +89,20 @@ namespace anvil
     typename MechanicalProblem<dim>::Parameters  mechanics_parameters;
     std::map<dealii::types::material_id, std::shared_ptr<const MaterialModel>> materials;
     std::unique_ptr<MechanicalProblem<dim>>      mechanical;
+    // Heat (built only if Physics/Heat is on).
+    bool                                         heat = false;
+    std::string                                  coupling;
+    typename ThermalProblem<dim>::Parameters     thermal_parameters;
+    ThermalBoundaryConditions<dim>               thermal_boundary_conditions;
+    std::map<dealii::types::material_id, ThermalMaterial> thermal_materials;
+    std::unique_ptr<ThermalProblem<dim>>         thermal;
+    dealii::TrilinosWrappers::MPI::Vector        temperature_before; // T_{n-1}, ghosted
+    double                                       initial_heat_content = 0;
+    unsigned long                                n_thermal_steps = 0;
+    /// Temperature at the mechanics' quadrature points: (T_n, T_{n-1}) for
+    /// the isothermal split (the mechanics sees the last thermal phase's change).
+    void mechanics_temperatures(const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
+                                std::vector<double> &T_new, std::vector<double> &T_old) const;
     TimeParameters                               time;
 
     std::string           output_dir;

@@ -85,6 +85,7 @@ namespace anvil
     double      bulk_modulus() const override { return elastic.bulk_modulus(); }
     double      shear_modulus() const override { return elastic.shear_modulus(); }
     double      density() const override { return elastic.density; }
+    double      heat_capacity() const override { return elastic.heat_capacity; }
     std::string name() const override
     {
       return !plastic ? "hypoelastic" : viscosity.active() ? "Perzyna" : "J2";

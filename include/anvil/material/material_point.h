@@ -137,6 +137,8 @@ namespace anvil
     virtual double bulk_modulus() const  = 0;
     virtual double shear_modulus() const = 0;
     virtual double density() const      = 0;
+    /// Specific heat c, mm²/(s² K).
+    virtual double heat_capacity() const { return 0; }
     virtual std::string name() const     = 0;
   };
 

@@ -16,6 +16,7 @@
 #include <anvil/material/material_point.h>
 #include <anvil/mechanics/boundary_conditions.h>
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -127,6 +128,21 @@ namespace anvil
       double balance_error() const;
     };
     const Energy &energy() const { return energy_audit; }
+    /**
+     * Temperatures at the quadrature points of a cell, at t_n+1 and t_n, for
+     * a coupled scene (without it the uniform Mechanics/Temperature is used).
+     */
+    using TemperatureField = std::function<void(const typename dealii::Triangulation<dim>::active_cell_iterator &,
+                                                std::vector<double> &T_new, std::vector<double> &T_old)>;
+    void set_temperature_field(const TemperatureField &field) { temperature_field = field; }
+    /// χẆirr + Ẇthel of the last assembly at quadrature point q of a cell (MPa/s = mW/mm³).
+    double heat_source(const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
+                       unsigned int q) const
+    {
+      return heat_sources[cell->active_cell_index() * quadrature.size() + q];
+    }
+    const dealii::Quadrature<dim> &get_quadrature() const { return quadrature; }
+
     /// Largest increment of equivalent plastic strain at a point in the last solve.
     double largest_plastic_increment() const { return max_plastic_increment; }
     bool   is_dynamic() const { return parameters.dynamic; }
@@ -215,6 +231,8 @@ namespace anvil
     // One material point per quadrature point of each locally owned cell,
     // indexed by active_cell_index * n_q_points + q.
     std::vector<std::unique_ptr<MaterialPoint>> points;
+    std::vector<double>                         heat_sources; // per point, last assembly
+    TemperatureField                            temperature_field;
     double step_internal_work = 0, step_plastic_work = 0, max_plastic_increment = 0;
     Energy energy_audit;
     dealii::TrilinosWrappers::MPI::Vector external_force_old, reaction_force, reaction_force_old;
