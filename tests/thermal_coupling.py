@@ -30,4 +30,30 @@ print("  plastic strain %.6f (uniform: min %.6f), heat gained %.8f mJ, chi W_p %
 close(heat, chi * wp, 1e-6, "heat content gained = chi x plastic work (mJ per mm depth)")
 p = q["p"]
 close(heat, chi * q["J"] * 1.0 * (s0 * p + h * p * p / 2), 5e-3, "= chi V (s0 p + h p^2/2), closed form")
+
+# Temperature back to the mechanics: a free block heated uniformly at 1 K/s
+# (source rho c) expands thermally; plane strain (eps_zz = 0) gives the in-plane
+# strain (1 + nu) beta dT. In the isothermal split the mechanics of a step sees
+# the temperature at its start, so at t = 1 it has seen dT = 1 - dt.
+beta, nu, dt = 1e-5, 0.3, 0.05
+rho_c = 7.8e-9 * 4.6e8
+_, s, _ = run("tests/homogeneous.prm", ["Physics/Heat=true", "Heat/Source=%.12g" % rho_c,
+                                        "Bodies/body/Material/Elasticity/Thermal expansion=%g" % beta,
+                                        "Boundary conditions/Displacement=left: ux = 0; bottom: uy = 0",
+                                        "Geometry/Random distortion=0", "Time/Time step=%g" % dt,
+                                        # a stress-free expansion: forces ~ 0, the absolute test decides
+                                        "Mechanics/Newton/Residual tolerance=1e-8",
+                                        "Mechanics/Newton/Absolute residual tolerance=1e-12",
+                                        "Output/Probes=corner: 1, 1",
+                                        "Output/Quantities of interest=ux: probe(corner, ux); uy: probe(corner, uy)"],
+                name="thermal_coupling_expansion")
+dT_seen = 1 - dt
+expected = (1 + nu) * beta * dT_seen
+q = s["quantities_of_interest"]
+print("  heated free block: corner displacement (%.6e, %.6e) mm, (1 + nu) beta dT L = %.6e mm" % (q["ux"], q["uy"], expected))
+close(q["ux"], expected, 1e-4, "thermal expansion in x seen by the mechanics")
+close(q["uy"], expected, 1e-4, "thermal expansion in y seen by the mechanics")
+check(s["cut_backs"] == 0, "no cut-back (the lag is one step of %g s)" % dt)
+# The source is per current volume, which grew by (1 + (1 + nu) beta dT)^2 - 1 ~ 2.5e-5.
+close(s["heat"]["heat_content_change"], rho_c * 1.0 * 1.0, 5e-5, "heat content gained = source x volume x time")
 finish()

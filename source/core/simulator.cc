@@ -198,7 +198,7 @@ namespace anvil
                                                         thermal_boundary_conditions,
                                                         thermal_materials, *timer);
         thermal->setup(0);
-        temperature_before = thermal->temperature();
+        update_point_temperatures(true);
         initial_heat_content = thermal->heat_content();
         mechanical->set_temperature_field(
           [this](const typename Triangulation<dim>::active_cell_iterator &cell,
@@ -303,7 +303,7 @@ namespace anvil
                   }
                 continue;
               }
-            temperature_before = thermal->old_temperature();
+            update_point_temperatures(false);
             thermal->commit();
           }
         mechanical->commit_step();
@@ -349,21 +349,38 @@ namespace anvil
   }
 
   template <int dim>
+  void Simulator<dim>::update_point_temperatures(const bool initial)
+  {
+    // After a thermal phase (before its commit): T_{n+1} and T_n.
+    const unsigned int n_q = mechanical->get_quadrature().size();
+    point_temperature.resize(triangulation.n_active_cells() * n_q);
+    point_temperature_before.resize(point_temperature.size());
+    std::vector<double> T_new(n_q), T_old(n_q);
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          thermal->temperature_at_quadrature_points(cell, mechanical->get_quadrature(), T_new, T_old);
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              point_temperature[cell->active_cell_index() * n_q + q] = T_new[q];
+              point_temperature_before[cell->active_cell_index() * n_q + q] =
+                initial ? T_new[q] : T_old[q];
+            }
+        }
+  }
+
+  template <int dim>
   void Simulator<dim>::mechanics_temperatures(
     const typename Triangulation<dim>::active_cell_iterator &cell,
     std::vector<double>                                     &T_new,
     std::vector<double>                                     &T_old) const
   {
-    // The thermal problem's committed T_n and the T_{n-1} before it.
-    std::vector<double> current(T_new.size());
-    thermal->temperature_at_quadrature_points(cell, mechanical->get_quadrature(), current, T_new);
-    FEValues<dim> fe_values(thermal->get_dof_handler().get_fe(), mechanical->get_quadrature(),
-                            update_values);
-    const typename DoFHandler<dim>::active_cell_iterator dof_cell(&triangulation, cell->level(),
-                                                                  cell->index(),
-                                                                  &thermal->get_dof_handler());
-    fe_values.reinit(dof_cell);
-    fe_values.get_function_values(temperature_before, T_old);
+    const unsigned int n_q = T_new.size();
+    for (unsigned int q = 0; q < n_q; ++q)
+      {
+        T_new[q] = point_temperature[cell->active_cell_index() * n_q + q];
+        T_old[q] = point_temperature_before[cell->active_cell_index() * n_q + q];
+      }
   }
 
   template class Simulator<2>;

@@ -96,7 +96,10 @@ namespace anvil
     ThermalBoundaryConditions<dim>               thermal_boundary_conditions;
     std::map<dealii::types::material_id, ThermalMaterial> thermal_materials;
     std::unique_ptr<ThermalProblem<dim>>         thermal;
-    dealii::TrilinosWrappers::MPI::Vector        temperature_before; // T_{n-1}, ghosted
+    // Temperatures at the mechanics' quadrature points (active_cell_index * n_q
+    // + q): T_n and T_{n-1}, refreshed after every thermal phase.
+    std::vector<double>                          point_temperature, point_temperature_before;
+    void update_point_temperatures(bool initial);
     double                                       initial_heat_content = 0;
     unsigned long                                n_thermal_steps = 0;
     /// Temperature at the mechanics' quadrature points: (T_n, T_{n-1}) for
