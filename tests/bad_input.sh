@@ -26,6 +26,7 @@ expect "unknown boundary"   "unknown_boundary.prm:3: .*'lft'.*left"        "$anv
 expect "unknown body"       "unknown_body.prm:6: 'Bodies/Names'.*beam"     "$anvil" "$b/unknown_body.prm"
 expect "bad expression"     "bad_expression.prm:3: .*0.5\*tt"              "$anvil" "$b/bad_expression.prm"
 expect "Poisson's ratio 0.5" "bad_poisson.prm:7: .*Poisson's ratio.*0.5"   "$anvil" "$b/bad_poisson.prm"
+expect "body not in Names" "body_not_listed.prm:3: .*Bodies.bar.*Bodies/Names" "$anvil" "$b/body_not_listed.prm"
 expect "inverted block"     "bad_block.prm:3: 'Geometry/Blocks'"           "$anvil" "$b/bad_block.prm"
 expect "missing scene file" "nonexistent.prm: cannot open"                 "$anvil" nonexistent.prm
 expect "bad --set entry"    "--set 'Time/End tme=2'"                       "$anvil" "$src/prm/cantilever.prm" --set "Time/End tme=2"

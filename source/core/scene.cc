@@ -147,6 +147,9 @@ namespace anvil
           msg = m[2].str() + ":" + m[1].str() + ": " + m[3].str();
         else
           msg = file + ": " + msg;
+        // The body subsections exist only for the bodies named in Bodies/Names.
+        if (msg.find("subsection to be entered: Bodies.") != std::string::npos)
+          msg += " (a body's subsection needs its name in 'Bodies/Names')";
         throw InputError(msg);
       }
   }
