@@ -44,10 +44,13 @@ namespace anvil
     prm.declare_entry("Heat", "false", Patterns::Bool(),
                       "Solve the heat equation (seed eq. 26) on the deforming bodies: a temperature "
                       "field, its ARKode integrator and the coupling exist only if this is on.");
-    prm.declare_entry("Coupling", "isothermal split", Patterns::Selection("isothermal split"),
+    prm.declare_entry("Coupling", "isothermal split",
+                      Patterns::Selection("isothermal split|adiabatic split"),
                       "Operator split of the thermomechanical step (seed sec. 2.2): isothermal split "
                       "(mechanics at fixed temperature, then heat at fixed geometry with the "
-                      "mechanical heat sources of the step).");
+                      "mechanical heat sources of the step); adiabatic split (Armero & Simo 1992: "
+                      "the mechanical phase carries each point's adiabatic temperature change, "
+                      "rho c dT = dt (chi W_irr + W_thel), the thermal phase then conducts it).");
     prm.leave_subsection();
     ThermalProblem<dim>::Parameters::declare_parameters(prm);
 
@@ -198,13 +201,13 @@ namespace anvil
                                                         thermal_boundary_conditions,
                                                         thermal_materials, *timer);
         thermal->setup(0);
-        update_point_temperatures(true);
+        update_point_temperatures();
+        mechanical->set_initial_point_temperatures(point_temperature);
         initial_heat_content = thermal->heat_content();
         mechanical->set_temperature_field(
           [this](const typename Triangulation<dim>::active_cell_iterator &cell,
-                 std::vector<double> &T_new, std::vector<double> &T_old) {
-            mechanics_temperatures(cell, T_new, T_old);
-          });
+                 std::vector<double> &T) { mechanics_temperatures(cell, T); },
+          coupling == "adiabatic split");
         thermal->set_heat_source([this](const typename DoFHandler<dim>::active_cell_iterator &cell,
                                         const unsigned int q) {
           return mechanical->heat_source(cell, q);
@@ -303,8 +306,8 @@ namespace anvil
                   }
                 continue;
               }
-            update_point_temperatures(false);
             thermal->commit();
+            update_point_temperatures();
           }
         mechanical->commit_step();
         last_accepted_step = step;
@@ -349,38 +352,28 @@ namespace anvil
   }
 
   template <int dim>
-  void Simulator<dim>::update_point_temperatures(const bool initial)
+  void Simulator<dim>::update_point_temperatures()
   {
-    // After a thermal phase (before its commit): T_{n+1} and T_n.
+    // After a thermal phase: T_n at the mechanics' quadrature points.
     const unsigned int n_q = mechanical->get_quadrature().size();
-    point_temperature.resize(triangulation.n_active_cells() * n_q);
-    point_temperature_before.resize(point_temperature.size());
+    point_temperature.assign(triangulation.n_active_cells() * n_q, 0.);
     std::vector<double> T_new(n_q), T_old(n_q);
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           thermal->temperature_at_quadrature_points(cell, mechanical->get_quadrature(), T_new, T_old);
           for (unsigned int q = 0; q < n_q; ++q)
-            {
-              point_temperature[cell->active_cell_index() * n_q + q] = T_new[q];
-              point_temperature_before[cell->active_cell_index() * n_q + q] =
-                initial ? T_new[q] : T_old[q];
-            }
+            point_temperature[cell->active_cell_index() * n_q + q] = T_new[q];
         }
   }
 
   template <int dim>
   void Simulator<dim>::mechanics_temperatures(
     const typename Triangulation<dim>::active_cell_iterator &cell,
-    std::vector<double>                                     &T_new,
-    std::vector<double>                                     &T_old) const
+    std::vector<double>                                     &T) const
   {
-    const unsigned int n_q = T_new.size();
-    for (unsigned int q = 0; q < n_q; ++q)
-      {
-        T_new[q] = point_temperature[cell->active_cell_index() * n_q + q];
-        T_old[q] = point_temperature_before[cell->active_cell_index() * n_q + q];
-      }
+    for (unsigned int q = 0; q < T.size(); ++q)
+      T[q] = point_temperature[cell->active_cell_index() * T.size() + q];
   }
 
   template class Simulator<2>;

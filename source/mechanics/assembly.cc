@@ -71,8 +71,7 @@ namespace anvil
     Vector<double>     cell_internal(n_dofs), cell_external(n_dofs), cell_rhs(n_dofs);
     std::vector<types::global_dof_index> dof_indices(n_dofs);
     std::vector<double>                  local_u(n_dofs), local_u_old(n_dofs);
-    std::vector<double>                  T_new(quadrature.size(), parameters.temperature),
-      T_old(quadrature.size(), parameters.temperature);
+    std::vector<double>                  T_new(quadrature.size(), parameters.temperature);
     std::vector<double>                  local_v_old(n_dofs), local_a_old(n_dofs), local_a(n_dofs);
     Vector<double>                       cell_inertia(n_dofs);
     FullMatrix<double>                   cell_mass(n_dofs, n_dofs);
@@ -178,7 +177,7 @@ namespace anvil
           }
         const double rho = (dynamic || body_force) ? materials.at(cell->material_id())->density() : 0;
         if (temperature_field)
-          temperature_field(cell, T_new, T_old);
+          temperature_field(cell, T_new);
 
         // Cell centre: J₀ and ∂J₀ for F-bar.
         double       J0 = 1, J0_old = 1;
@@ -226,8 +225,11 @@ namespace anvil
             kin.reinit(F_mat, F_mat_old);
             increment.strain_increment      = kin.strain_increment;
             increment.rotation_increment    = kin.rotation_increment;
+            const unsigned int point_index = cell->active_cell_index() * n_q + q;
             increment.temperature           = temperature_field ? T_new[q] : parameters.temperature;
-            increment.temperature_increment = temperature_field ? T_new[q] - T_old[q] : 0.;
+            increment.temperature_increment =
+              temperature_field ? T_new[q] - material_temperature_old[point_index] : 0.;
+            increment.adiabatic = temperature_field && adiabatic_split;
             increment.time_step             = current_time_step;
             MaterialPoint &point = *points[cell->active_cell_index() * n_q + q];
             try
@@ -255,8 +257,12 @@ namespace anvil
                                          kin.strain_increment) *
                                   determinant(0.5 * (F + F_old)) * w;
             step_plastic_work += response.plastic_work_rate * current_time_step * J * w;
-            heat_sources[cell->active_cell_index() * n_q + q] =
+            heat_sources[point_index] =
               response.plastic_dissipation_rate + response.thermoelastic_heating_rate;
+            if (temperature_field)
+              material_temperature[point_index] =
+                increment.temperature +
+                (increment.adiabatic ? response.adiabatic_temperature_increment : 0.);
             max_plastic_increment =
               std::max(max_plastic_increment,
                        response.equivalent_plastic_strain - point.committed_equivalent_plastic_strain());

@@ -172,6 +172,7 @@ namespace anvil
     energy_audit.elastic_energy = elastic_strain_energy();
 
     previous_increment = du;
+    material_temperature_old = material_temperature;
     previous_time_step = current_time_step;
     for (auto &p : points)
       if (p)

@@ -96,16 +96,15 @@ namespace anvil
     ThermalBoundaryConditions<dim>               thermal_boundary_conditions;
     std::map<dealii::types::material_id, ThermalMaterial> thermal_materials;
     std::unique_ptr<ThermalProblem<dim>>         thermal;
-    // Temperatures at the mechanics' quadrature points (active_cell_index * n_q
-    // + q): T_n and T_{n-1}, refreshed after every thermal phase.
-    std::vector<double>                          point_temperature, point_temperature_before;
-    void update_point_temperatures(bool initial);
+    // T_n at the mechanics' quadrature points (active_cell_index * n_q + q).
+    std::vector<double>                          point_temperature;
+    void update_point_temperatures();
     double                                       initial_heat_content = 0;
     unsigned long                                n_thermal_steps = 0;
-    /// Temperature at the mechanics' quadrature points: (T_n, T_{n-1}) for
-    /// the isothermal split (the mechanics sees the last thermal phase's change).
+    /// Temperature T_n at the mechanics' quadrature points (each point
+    /// remembers what it saw last, so it takes the thermal phase's change).
     void mechanics_temperatures(const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
-                                std::vector<double> &T_new, std::vector<double> &T_old) const;
+                                std::vector<double> &T) const;
     TimeParameters                               time;
 
     std::string           output_dir;

@@ -133,8 +133,24 @@ namespace anvil
      * a coupled scene (without it the uniform Mechanics/Temperature is used).
      */
     using TemperatureField = std::function<void(const typename dealii::Triangulation<dim>::active_cell_iterator &,
-                                                std::vector<double> &T_new, std::vector<double> &T_old)>;
-    void set_temperature_field(const TemperatureField &field) { temperature_field = field; }
+                                                std::vector<double> &T)>;
+    /**
+     * Temperatures at the quadrature points from the heat equation (T_n).
+     * Each point remembers the temperature it ended its last step at, so the
+     * increment it sees is ΔT = T_n − T_seen: the thermal phase's change (and
+     * with @p adiabatic, the Armero–Simo split, the point adds its own
+     * adiabatic heating ΔT_ad of the step, which it then remembers too).
+     */
+    void set_temperature_field(const TemperatureField &field, bool adiabatic)
+    {
+      temperature_field = field;
+      adiabatic_split   = adiabatic;
+    }
+    /// The temperature every point starts from (heat scenes).
+    void set_initial_point_temperatures(const std::vector<double> &T)
+    {
+      material_temperature = material_temperature_old = T;
+    }
     /// χẆirr + Ẇthel of the last assembly at quadrature point q of a cell (MPa/s = mW/mm³).
     double heat_source(const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
                        unsigned int q) const
@@ -233,6 +249,9 @@ namespace anvil
     std::vector<std::unique_ptr<MaterialPoint>> points;
     std::vector<double>                         heat_sources; // per point, last assembly
     TemperatureField                            temperature_field;
+    bool                                        adiabatic_split = false;
+    // The temperature each point ended its last update at (current and committed).
+    std::vector<double>                         material_temperature, material_temperature_old;
     double step_internal_work = 0, step_plastic_work = 0, max_plastic_increment = 0;
     Energy energy_audit;
     dealii::TrilinosWrappers::MPI::Vector external_force_old, reaction_force, reaction_force_old;
