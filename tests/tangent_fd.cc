@@ -20,10 +20,7 @@ using namespace anvil;
 
 std::shared_ptr<const MaterialModel> make_model(const std::string &settings)
 {
-  ParameterHandler prm;
-  MaterialFactory::declare_parameters(prm);
-  prm.parse_input_from_string("subsection Material\n" + settings + "end\n");
-  return MaterialFactory::create(prm, Scene(), "");
+  return MaterialFactory::create_from_text(settings);
 }
 
 struct Case

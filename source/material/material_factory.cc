@@ -37,5 +37,13 @@ namespace anvil
       prm.leave_subsection();
       return m;
     }
+
+    std::shared_ptr<const MaterialModel> create_from_text(const std::string &settings)
+    {
+      ParameterHandler prm;
+      declare_parameters(prm);
+      prm.parse_input_from_string("subsection Material\n" + settings + "\nend\n");
+      return create(prm, Scene(), "");
+    }
   } // namespace MaterialFactory
 } // namespace anvil

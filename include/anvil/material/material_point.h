@@ -168,5 +168,9 @@ namespace anvil
     std::shared_ptr<const MaterialModel> create(dealii::ParameterHandler &prm,
                                                 const Scene              &scene,
                                                 const std::string        &path_prefix);
+
+    /// A model from the text of a `subsection Material` body (.prm syntax),
+    /// for programs and tests that need a law without a scene.
+    std::shared_ptr<const MaterialModel> create_from_text(const std::string &settings);
   } // namespace MaterialFactory
 } // namespace anvil
