@@ -16,7 +16,7 @@ sets = ["Bodies/body/Material/Model=J2",
         "Bodies/body/Material/Hardening/Hardening modulus=%g" % h,
         "Bodies/body/Material/Elasticity/Young's modulus=200000",
         "Bodies/body/Material/Elasticity/Taylor-Quinney coefficient=%g" % chi,
-        "Physics/Heat=true", "Heat/Initial temperature=293",
+        "Physics/Coupling=isothermal split", "Heat/Initial temperature=293",
         "Mechanics/Newton/Residual tolerance=1e-10", "Mechanics/Newton/Absolute residual tolerance=0",
         "Boundary conditions/Displacement=" + "; ".join("%s: ux = 0.2*t*x, uy = (1/(1 + 0.2*t) - 1)*y" % b
                                                  for b in ("left", "right", "bottom", "top")),
@@ -62,7 +62,7 @@ check(errors["isothermal split"] > 10 * errors["adiabatic split"],
 # the temperature at its start, so at t = 1 it has seen dT = 1 - dt.
 beta, nu, dt = 1e-5, 0.3, 0.05
 rho_c = 7.8e-9 * 4.6e8
-_, s, _ = run("tests/homogeneous.prm", ["Physics/Heat=true", "Heat/Source=%.12g" % rho_c,
+_, s, _ = run("tests/homogeneous.prm", ["Physics/Coupling=isothermal split", "Heat/Source=%.12g" % rho_c,
                                         "Bodies/body/Material/Elasticity/Thermal expansion=%g" % beta,
                                         "Boundary conditions/Displacement=left: ux = 0; bottom: uy = 0",
                                         "Geometry/Random distortion=0", "Time/Time step=%g" % dt,

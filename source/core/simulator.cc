@@ -41,16 +41,25 @@ namespace anvil
     prm.leave_subsection();
 
     prm.enter_subsection("Physics");
-    prm.declare_entry("Heat", "false", Patterns::Bool(),
-                      "Solve the heat equation (seed eq. 26) on the deforming bodies: a temperature "
-                      "field, its ARKode integrator and the coupling exist only if this is on.");
-    prm.declare_entry("Coupling", "isothermal split",
-                      Patterns::Selection("isothermal split|adiabatic split"),
-                      "Operator split of the thermomechanical step (seed sec. 2.2): isothermal split "
-                      "(mechanics at fixed temperature, then heat at fixed geometry with the "
-                      "mechanical heat sources of the step); adiabatic split (Armero & Simo 1992: "
-                      "the mechanical phase carries each point's adiabatic temperature change, "
-                      "rho c dT = dt (chi W_irr + W_thel), the thermal phase then conducts it).");
+    prm.declare_entry(
+      "Coupling", "mechanical only",
+      Patterns::Selection(
+        "mechanical only|thermal only|isothermal split|adiabatic split|iterated staggered"),
+      "Which physics the scene solves and how they are coupled (seed sec. 2.2). "
+      "mechanical only: no temperature field and no ARKode object (Mechanics/Temperature is "
+      "the uniform temperature); thermal only: the heat equation on the undeformed bodies, no "
+      "mechanics; isothermal split: mechanics at the temperature of the last thermal phase, "
+      "then heat at the new geometry with the step's mechanical heat sources (seed "
+      "sec. 2.2.1); adiabatic split (Armero & Simo 1992, seed sec. 2.2.2): as the isothermal "
+      "split, but each point carries its own adiabatic temperature change in the mechanical "
+      "phase, rho c dT = dt (chi W_irr + W_thel); iterated staggered: the two phases repeated "
+      "within the step, the mechanics at the end-of-step temperature, until the temperature "
+      "changes by less than Staggered tolerance (the accuracy reference for the splits).");
+    prm.declare_entry("Staggered tolerance", "1e-6", Patterns::Double(0),
+                      "iterated staggered: largest change of a nodal temperature between two "
+                      "iterations at which the step is converged, K.");
+    prm.declare_entry("Staggered iterations", "30", Patterns::Integer(1),
+                      "iterated staggered: iterations before the step is cut back.");
     prm.leave_subsection();
     ThermalProblem<dim>::Parameters::declare_parameters(prm);
 
@@ -127,9 +136,14 @@ namespace anvil
 
     mechanics_parameters.parse_parameters(prm, scene);
     prm.enter_subsection("Physics");
-    heat     = prm.get_bool("Heat");
-    coupling = prm.get("Coupling");
+    coupling                  = prm.get("Coupling");
+    staggered_tolerance       = prm.get_double("Staggered tolerance");
+    max_staggered_iterations  = prm.get_integer("Staggered iterations");
     prm.leave_subsection();
+    heat      = coupling != "mechanical only";
+    mechanics = coupling != "thermal only";
+    if (!(staggered_tolerance > 0))
+      scene.fail("Physics/Staggered tolerance", "must be > 0 K");
     if (heat)
       {
         thermal_parameters.parse_parameters(prm, scene);
@@ -192,18 +206,24 @@ namespace anvil
           geometry.finish_loaded(triangulation);
         }
     }
-    mechanical = std::make_unique<MechanicalProblem<dim>>(triangulation, mechanics_parameters,
-                                                          boundary_conditions, materials, *timer);
-    mechanical->setup();
+    if (mechanics)
+      {
+        mechanical = std::make_unique<MechanicalProblem<dim>>(triangulation, mechanics_parameters,
+                                                              boundary_conditions, materials, *timer);
+        mechanical->setup();
+      }
     if (heat)
       {
         thermal = std::make_unique<ThermalProblem<dim>>(triangulation, thermal_parameters,
                                                         thermal_boundary_conditions,
                                                         thermal_materials, *timer);
         thermal->setup(0);
+        initial_heat_content = thermal->heat_content();
+      }
+    if (heat && mechanics)
+      {
         update_point_temperatures();
         mechanical->set_initial_point_temperatures(point_temperature);
-        initial_heat_content = thermal->heat_content();
         mechanical->set_temperature_field(
           [this](const typename Triangulation<dim>::active_cell_iterator &cell,
                  std::vector<double> &T) { mechanics_temperatures(cell, T); },
@@ -216,17 +236,27 @@ namespace anvil
     double t  = 0;
     double dt = time.time_step;
     if (!restart_directory.empty())
-      read_checkpoint(t, dt);
+      {
+        read_checkpoint(t, dt);
+        if (heat && mechanics)
+          update_point_temperatures();
+      }
     double last_accepted_step = dt;
 
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       std::filesystem::create_directories(output_dir + "/fields");
     MPI_Barrier(mpi_communicator);
     if (!quiet)
-      pcout << "anvil: " << scene.filename() << ", " << dim << "D, "
-            << triangulation.n_global_active_cells() << " cells, " << mechanical->n_dofs()
-            << " displacement DoFs, " << Utilities::MPI::n_mpi_processes(mpi_communicator)
-            << " process(es) -> " << output_dir << std::endl;
+      {
+        pcout << "anvil: " << scene.filename() << ", " << dim << "D, "
+              << triangulation.n_global_active_cells() << " cells, ";
+        if (mechanical)
+          pcout << mechanical->n_dofs() << " displacement DoFs, ";
+        if (thermal)
+          pcout << thermal->n_dofs() << " temperature DoFs, ";
+        pcout << coupling << ", " << Utilities::MPI::n_mpi_processes(mpi_communicator)
+              << " process(es) -> " << output_dir << std::endl;
+      }
 
     open_histories();
     if (restart_directory.empty())
@@ -238,27 +268,10 @@ namespace anvil
     std::string  status = "completed";
     while (t < time.end_time - eps)
       {
-        const double step = std::min(dt, time.end_time - t);
-        auto result = mechanical->solve_step(t, t + step);
-        if (result.converged && mechanics_parameters.maximum_plastic_increment > 0 &&
-            mechanical->largest_plastic_increment() > mechanics_parameters.maximum_plastic_increment)
-          {
-            result.converged = false;
-            result.failure   = "the plastic strain grew by " +
-                             Utilities::to_string(mechanical->largest_plastic_increment(), 3) +
-                             " at a point (limit " +
-                             Utilities::to_string(mechanics_parameters.maximum_plastic_increment) + ")";
-          }
-        n_newton += result.iterations;
-        n_linear += result.linear_iterations;
-        for (unsigned int k = 0; k < result.residuals.size(); ++k)
-          newton_csv.add_row({double(n_steps + 1), t + step, double(k), result.residuals[k],
-                              k < result.increments.size() ? result.increments[k] : 0.,
-                              k < result.line_search_steps.size() ? result.line_search_steps[k] : 1.,
-                              result.converged ? 1. : 0.});
+        const double step   = std::min(dt, time.end_time - t);
+        CoupledStep  result = advance(t, t + step);
         if (!result.converged)
           {
-            mechanical->revert_step();
             ++n_cut_backs;
             dt = step / 2;
             if (!quiet)
@@ -280,41 +293,43 @@ namespace anvil
             continue;
           }
 
-        if (heat)
+        // Accept: the heat balance of the step, then both halves commit.
+        if (thermal)
           {
-            // Isothermal split: heat at the new geometry with this step's sources.
-            thermal->set_configuration(mechanical->get_dof_handler(), mechanical->displacement());
-            const auto stats = thermal->solve_step(t, t + step);
-            n_thermal_steps += stats.internal_steps;
-            if (!stats.converged)
+            if (mechanical)
               {
-                thermal->revert();
-                mechanical->revert_step();
-                ++n_cut_backs;
-                dt = step / 2;
-                if (!quiet)
-                  pcout << "  heat step at t = " << t + step << " s failed: " << stats.failure
-                        << "; cutting back to dt = " << dt << " s" << std::endl;
-                if (dt < time.minimum_time_step * (1 - 1e-12))
-                  {
-                    status = "failed at t = " + Utilities::to_string(t + step) + " s: " +
-                             stats.failure + "; minimum time step reached";
-                    write_fields(t, n_steps);
-                    write_summary(status);
-                    failure_reason = status;
-                    return false;
-                  }
-                continue;
+                const double source = thermal->integrate(
+                  [this](const typename DoFHandler<dim>::active_cell_iterator &cell,
+                         const unsigned int q) { return mechanical->heat_source(cell, q); });
+                const double thermoelastic = thermal->integrate(
+                  [this](const typename DoFHandler<dim>::active_cell_iterator &cell,
+                         const unsigned int q) { return mechanical->thermoelastic_source(cell, q); });
+                heat_audit.plastic += step * (source - thermoelastic);
+                heat_audit.thermoelastic += step * thermoelastic;
               }
             thermal->commit();
-            update_point_temperatures();
+            if (mechanical)
+              update_point_temperatures();
           }
-        mechanical->commit_step();
+        if (mechanical)
+          mechanical->commit_step();
         last_accepted_step = step;
         t            = t + step;
         current_time = t;
         ++n_steps;
         write_histories(t, n_steps);
+        if (thermal)
+          {
+            const auto &a = result.thermal;
+            thermal_csv.add_row({double(n_steps), t, step, double(a.internal_steps),
+                                 double(a.attempted_steps), double(a.error_test_failures),
+                                 double(a.nonlinear_iterations), double(a.nonlinear_failures),
+                                 double(a.linear_setups), double(a.linear_solves),
+                                 double(a.linear_iterations), double(a.mass_solves),
+                                 double(a.rhs_evaluations), a.last_internal_step,
+                                 double(result.staggered_iterations), result.staggered_change,
+                                 result.contraction, result.mechanical_wall, result.thermal_wall});
+          }
         const bool last = t >= time.end_time - eps;
         if (last || (output_interval > 0 && n_steps % output_interval == 0))
           write_fields(t, n_steps);
@@ -327,14 +342,24 @@ namespace anvil
             const double eta     = t > 0 ? elapsed / t * (time.end_time - t) : 0;
             std::ostringstream line;
             line << "step " << std::setw(5) << n_steps << "  t = " << std::scientific
-                 << std::setprecision(4) << t << " s  dt = " << std::setprecision(2) << step
-                 << " s  Newton " << std::setw(2) << result.iterations << " |R| "
-                 << std::setprecision(1) << result.residuals.front() << " -> "
-                 << result.residuals.back() << " N  ETA " << std::fixed << std::setprecision(1)
-                 << eta << " s";
+                 << std::setprecision(4) << t << " s  dt = " << std::setprecision(2) << step << " s";
+            if (mechanical)
+              line << "  Newton " << std::setw(2) << result.mechanics.iterations << " |R| "
+                   << std::setprecision(1) << result.mechanics.residuals.front() << " -> "
+                   << result.mechanics.residuals.back() << " N";
+            if (thermal)
+              line << "  heat " << result.thermal.internal_steps << " steps";
+            if (result.staggered_iterations > 0)
+              line << "  staggered " << result.staggered_iterations << " its, dT "
+                   << std::setprecision(1) << result.staggered_change << " K, contraction "
+                   << std::setprecision(2) << result.contraction;
+            line << "  ETA " << std::fixed << std::setprecision(1) << eta << " s";
             pcout << line.str() << std::endl;
           }
-        if (result.iterations <= time.easy_iterations)
+        const unsigned int effort =
+          mechanical ? result.mechanics.iterations : 0;
+        if (effort <= time.easy_iterations &&
+            (!thermal || result.thermal.error_test_failures + result.thermal.nonlinear_failures == 0))
           dt = std::min(step * time.growth_factor, time.maximum_time_step);
         else
           dt = step;
@@ -349,6 +374,119 @@ namespace anvil
           pcout << "  " << name << " = " << std::setprecision(10) << value << std::endl;
       }
     return true;
+  }
+
+  template <int dim>
+  typename Simulator<dim>::CoupledStep Simulator<dim>::advance(const double t_old, const double t_new)
+  {
+    CoupledStep result;
+    auto add_thermal = [&](const typename ThermalProblem<dim>::Statistics &s) {
+      auto &a = result.thermal;
+      a.converged = s.converged;
+      a.failure   = s.failure;
+      a.internal_steps += s.internal_steps;
+      a.attempted_steps += s.attempted_steps;
+      a.error_test_failures += s.error_test_failures;
+      a.nonlinear_iterations += s.nonlinear_iterations;
+      a.nonlinear_failures += s.nonlinear_failures;
+      a.linear_setups += s.linear_setups;
+      a.linear_solves += s.linear_solves;
+      a.linear_iterations += s.linear_iterations;
+      a.mass_solves += s.mass_solves;
+      a.rhs_evaluations += s.rhs_evaluations;
+      a.last_internal_step = s.last_internal_step;
+      n_thermal_steps += s.internal_steps;
+      n_thermal_nonlinear += s.nonlinear_iterations;
+    };
+    // Both halves back to tₙ (and the points' temperature to Tₙ).
+    auto fail = [&](const std::string &why) {
+      if (thermal)
+        thermal->revert();
+      if (mechanical)
+        mechanical->revert_step();
+      if (thermal && mechanical)
+        update_point_temperatures();
+      result.converged = false;
+      result.failure   = why;
+      return result;
+    };
+    auto solve_mechanics = [&]() {
+      const double start = MPI_Wtime();
+      auto         r     = mechanical->solve_step(t_old, t_new);
+      if (r.converged && mechanics_parameters.maximum_plastic_increment > 0 &&
+          mechanical->largest_plastic_increment() > mechanics_parameters.maximum_plastic_increment)
+        {
+          r.converged = false;
+          r.failure   = "the plastic strain grew by " +
+                      Utilities::to_string(mechanical->largest_plastic_increment(), 3) +
+                      " at a point (limit " +
+                      Utilities::to_string(mechanics_parameters.maximum_plastic_increment) + ")";
+        }
+      n_newton += r.iterations;
+      n_linear += r.linear_iterations;
+      for (unsigned int k = 0; k < r.residuals.size(); ++k)
+        newton_csv.add_row({double(n_steps + 1), t_new, double(k), r.residuals[k],
+                            k < r.increments.size() ? r.increments[k] : 0.,
+                            k < r.line_search_steps.size() ? r.line_search_steps[k] : 1.,
+                            r.converged ? 1. : 0.});
+      result.mechanical_wall += MPI_Wtime() - start;
+      result.mechanics = r;
+      return r.converged;
+    };
+    auto solve_heat = [&]() {
+      const double start = MPI_Wtime();
+      if (mechanical)
+        thermal->set_configuration(mechanical->get_dof_handler(), mechanical->displacement());
+      const auto s = thermal->solve_step(t_old, t_new);
+      add_thermal(s);
+      result.thermal_wall += MPI_Wtime() - start;
+      return s.converged;
+    };
+
+    if (mechanical && !solve_mechanics())
+      return fail(result.mechanics.failure);
+    if (!thermal)
+      return result;
+    if (!solve_heat())
+      return fail("heat: " + result.thermal.failure);
+    if (coupling != "iterated staggered")
+      return result;
+
+    // Iterated staggered: the mechanics again at the end-of-step temperature
+    // T^(k), the heat again with its sources, until T stops changing.
+    TrilinosWrappers::MPI::Vector previous(thermal->temperature());
+    double                        last_change = 0;
+    for (unsigned int k = 1;; ++k)
+      {
+        if (k > max_staggered_iterations)
+          return fail("the staggered iteration did not reach " +
+                      Utilities::to_string(staggered_tolerance) + " K in " +
+                      Utilities::to_string(max_staggered_iterations) + " iterations (last change " +
+                      Utilities::to_string(last_change) + " K, contraction " +
+                      Utilities::to_string(result.contraction) + ")");
+        update_point_temperatures(); // T^(k) at the points
+        mechanical->revert_step();
+        thermal->revert();
+        if (!solve_mechanics())
+          return fail(result.mechanics.failure);
+        if (!solve_heat())
+          return fail("heat: " + result.thermal.failure);
+        TrilinosWrappers::MPI::Vector change(thermal->temperature());
+        change -= previous;
+        const double dT = change.linfty_norm();
+        previous        = thermal->temperature();
+        if (k > 1 && last_change > 0)
+          result.contraction = dT / last_change;
+        last_change                   = dT;
+        result.staggered_iterations   = k;
+        result.staggered_change       = dT;
+        n_staggered_iterations += 1;
+        if (dT <= staggered_tolerance)
+          return result;
+        if (k > 2 && result.contraction >= 1)
+          return fail("the staggered iteration diverges (contraction " +
+                      Utilities::to_string(result.contraction, 3) + ")");
+      }
   }
 
   template <int dim>

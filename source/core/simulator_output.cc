@@ -89,13 +89,19 @@ namespace anvil
         probes.push_back(p);
       }
 
-    const std::vector<std::string> fields = {"stress_xx", "stress_xy", "stress_xz", "stress_yy",
-                                             "stress_yz", "stress_zz", "von_mises", "pressure",
-                                             "J", "equivalent_plastic_strain"};
+    std::vector<std::string> fields;
+    if (mechanics)
+      fields = {"stress_xx", "stress_xy", "stress_xz", "stress_yy", "stress_yz",
+                "stress_zz", "von_mises", "pressure",  "J",         "equivalent_plastic_strain"};
+    if (heat)
+      fields.push_back("temperature");
     auto is_field = [&](const std::string &f) {
       return std::find(fields.begin(), fields.end(), f) != fields.end();
     };
     const std::string qpath = "Output/Quantities of interest";
+    std::string       known_fields;
+    for (const auto &f : fields)
+      known_fields += (known_fields.empty() ? "" : ", ") + f;
     for (const auto &item : split_outside_parentheses(qoi_text, ';'))
       {
         if (item.empty())
@@ -114,6 +120,9 @@ namespace anvil
           scene.fail(qpath, "item '" + item + "': component '" + c + "' should be x, y" +
                               (dim == 3 ? " or z" : ""));
         };
+        if (f == "reaction" && args.size() == 2 && !mechanics)
+          scene.fail(qpath, "item '" + item + "': a reaction needs the mechanics, and "
+                              "Physics/Coupling is 'thermal only'");
         if (f == "reaction" && args.size() == 2)
           {
             q.target    = args[0];
@@ -128,8 +137,10 @@ namespace anvil
                              [&](const Probe &p) { return p.name == args[0]; }))
               scene.fail(qpath, "item '" + item + "': no probe named '" + args[0] +
                                   "' in Output/Probes");
-            if (!is_field(q.field) && !(q.field.size() == 2 && q.field[0] == 'u'))
-              scene.fail(qpath, "item '" + item + "': unknown field '" + q.field + "'");
+            if (!is_field(q.field) && !(mechanics && q.field.size() == 2 && q.field[0] == 'u'))
+              scene.fail(qpath, "item '" + item + "': unknown field '" + q.field +
+                                  "' for this scene (expected ux, uy" + (dim == 3 ? ", uz" : "") +
+                                  " or one of: " + known_fields + ")");
             if (q.field[0] == 'u' && q.field.size() == 2)
               q.component = component_of(q.field.substr(1));
           }
@@ -144,7 +155,7 @@ namespace anvil
         else
           scene.fail(qpath, "item '" + item + "': expected reaction(boundary, x), "
                               "probe(name, field), max(field), min(field) or mean(field[, body]) "
-                              "with a known field");
+                              "with a field of this scene (" + known_fields + ")");
         quantities.push_back(q);
       }
   }
@@ -152,39 +163,83 @@ namespace anvil
   template <int dim>
   void Simulator<dim>::open_histories()
   {
-    const bool root = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
-    // Reactions on every named boundary: what a user plots first.
-    std::vector<std::string> columns = {"step", "time"};
-    reaction_boundaries.clear();
-    for (const auto &[name, id] : geometry.boundary_names())
-      {
-        reaction_boundaries.emplace_back(name, id);
-        for (unsigned int d = 0; d < dim; ++d)
-          columns.push_back(name + "_F" + "xyz"[d]);
-      }
+    const bool root   = Utilities::MPI::this_mpi_process(mpi_communicator) == 0;
     const bool append = !restart_directory.empty();
-    reactions_csv.open(output_dir + "/reactions.csv", columns, root, append);
+    std::vector<std::string> columns;
+    if (mechanical)
+      {
+        // Reactions on every named boundary: what a user plots first.
+        columns = {"step", "time"};
+        reaction_boundaries.clear();
+        for (const auto &[name, id] : geometry.boundary_names())
+          {
+            reaction_boundaries.emplace_back(name, id);
+            for (unsigned int d = 0; d < dim; ++d)
+              columns.push_back(name + "_F" + "xyz"[d]);
+          }
+        reactions_csv.open(output_dir + "/reactions.csv", columns, root, append);
+      }
 
     if (!probes.empty())
       {
         columns = {"step", "time"};
         for (const auto &p : probes)
           {
-            for (unsigned int d = 0; d < dim; ++d)
-              columns.push_back(p.name + "_u" + "xyz"[d]);
-            for (const auto *c : {"xx", "yy", "zz", "xy", "yz", "xz"})
-              columns.push_back(p.name + "_stress_" + c);
-            columns.push_back(p.name + "_equivalent_plastic_strain");
+            if (mechanical)
+              {
+                for (unsigned int d = 0; d < dim; ++d)
+                  columns.push_back(p.name + "_u" + "xyz"[d]);
+                for (const auto *c : {"xx", "yy", "zz", "xy", "yz", "xz"})
+                  columns.push_back(p.name + "_stress_" + c);
+                columns.push_back(p.name + "_equivalent_plastic_strain");
+              }
+            if (thermal)
+              columns.push_back(p.name + "_temperature");
           }
         probes_csv.open(output_dir + "/probes.csv", columns, root, append);
       }
-    energy_csv.open(output_dir + "/energy.csv",
-                    {"step", "time", "external_work", "internal_work", "kinetic_energy",
-                     "plastic_work", "elastic_energy", "stress_work", "balance_error"},
-                    root, append);
-    newton_csv.open(output_dir + "/newton.csv",
-                    {"step", "time", "iteration", "residual", "increment", "line_search", "converged"},
-                    root, append);
+    columns = {"step", "time"};
+    if (mechanical)
+      columns.insert(columns.end(), {"external_work", "internal_work", "kinetic_energy",
+                                     "plastic_work", "elastic_energy", "stress_work",
+                                     "balance_error"});
+    if (thermal)
+      columns.insert(columns.end(),
+                     {"heat_content", "heat_content_change", "boundary_heat_in", "source_heat",
+                      "plastic_heat", "thermoelastic_heat", "heat_balance_error"});
+    energy_csv.open(output_dir + "/energy.csv", columns, root, append);
+    if (mechanical)
+      newton_csv.open(output_dir + "/newton.csv",
+                      {"step", "time", "iteration", "residual", "increment", "line_search",
+                       "converged"},
+                      root, append);
+    if (thermal)
+      thermal_csv.open(output_dir + "/thermal.csv",
+                       {"step", "time", "time_step", "arkode_steps", "arkode_attempts",
+                        "error_test_failures", "nonlinear_iterations", "nonlinear_failures",
+                        "linear_setups", "linear_solves", "linear_iterations", "mass_solves",
+                        "rhs_evaluations", "last_internal_step", "staggered_iterations",
+                        "staggered_change", "staggered_contraction", "mechanics_wall_time",
+                        "thermal_wall_time"},
+                       root, append);
+  }
+
+  template <int dim>
+  typename Simulator<dim>::HeatBalance Simulator<dim>::heat_balance() const
+  {
+    HeatBalance b;
+    b.content = thermal->heat_content();
+    b.change  = b.content - initial_heat_content;
+    for (const auto &[id, q] : thermal->boundary_heat_flow())
+      b.boundary += q;
+    b.plastic       = heat_audit.plastic;
+    b.thermoelastic = heat_audit.thermoelastic;
+    b.source        = thermal->source_heat() - b.plastic - b.thermoelastic;
+    const double residual = b.change - b.boundary - thermal->source_heat();
+    const double scale    = std::max({std::abs(b.change), std::abs(b.boundary),
+                                      std::abs(thermal->source_heat()), 1e-300});
+    b.error = std::abs(residual) / scale;
+    return b;
   }
 
   template <int dim>
@@ -192,33 +247,51 @@ namespace anvil
   {
     TimerOutput::Scope  s(*timer, "Output");
     std::vector<double> row = {double(step), t};
-    for (const auto &[name, id] : reaction_boundaries)
+    if (mechanical)
       {
-        const auto f = mechanical->reaction(id);
-        for (unsigned int d = 0; d < dim; ++d)
-          row.push_back(f[d]);
+        for (const auto &[name, id] : reaction_boundaries)
+          {
+            const auto f = mechanical->reaction(id);
+            for (unsigned int d = 0; d < dim; ++d)
+              row.push_back(f[d]);
+          }
+        reactions_csv.add_row(row);
       }
-    reactions_csv.add_row(row);
 
     if (!probes.empty())
       {
         row = {double(step), t};
         for (const auto &p : probes)
           {
-            Tensor<1, dim>        u;
-            SymmetricTensor<2, 3> s;
-            double                eqps = 0;
-            mechanical->probe(p.point, u, s, eqps);
-            for (unsigned int d = 0; d < dim; ++d)
-              row.push_back(u[d]);
-            row.insert(row.end(), {s[0][0], s[1][1], s[2][2], s[0][1], s[1][2], s[0][2], eqps});
+            if (mechanical)
+              {
+                Tensor<1, dim>        u;
+                SymmetricTensor<2, 3> s;
+                double                eqps = 0;
+                mechanical->probe(p.point, u, s, eqps);
+                for (unsigned int d = 0; d < dim; ++d)
+                  row.push_back(u[d]);
+                row.insert(row.end(), {s[0][0], s[1][1], s[2][2], s[0][1], s[1][2], s[0][2], eqps});
+              }
+            if (thermal)
+              row.push_back(thermal->temperature_at(p.point));
           }
         probes_csv.add_row(row);
       }
-    const auto &e = mechanical->energy();
-    energy_csv.add_row({double(step), t, e.external_work, e.internal_work, e.kinetic,
-                        e.plastic_work, e.elastic_energy, e.stress_work,
-                        e.balance_error()});
+    row = {double(step), t};
+    if (mechanical)
+      {
+        const auto &e = mechanical->energy();
+        row.insert(row.end(), {e.external_work, e.internal_work, e.kinetic, e.plastic_work,
+                               e.elastic_energy, e.stress_work, e.balance_error()});
+      }
+    if (thermal)
+      {
+        const auto b = heat_balance();
+        row.insert(row.end(),
+                   {b.content, b.change, b.boundary, b.source, b.plastic, b.thermoelastic, b.error});
+      }
+    energy_csv.add_row(row);
   }
 
   template <int dim>
@@ -226,24 +299,32 @@ namespace anvil
   {
     TimerOutput::Scope s(*timer, "Output");
     DataOut<dim>       data_out;
-    data_out.attach_dof_handler(mechanical->get_dof_handler());
-    std::vector<DataComponentInterpretation::DataComponentInterpretation> interpretation(
-      dim, DataComponentInterpretation::component_is_part_of_vector);
-    data_out.add_data_vector(mechanical->displacement(),
-                             std::vector<std::string>(dim, "displacement"),
-                             DataOut<dim>::type_dof_data, interpretation);
-    if (mechanical->is_dynamic())
-      data_out.add_data_vector(mechanical->velocity(), std::vector<std::string>(dim, "velocity"),
-                               DataOut<dim>::type_dof_data, interpretation);
-    if (thermal)
-      data_out.add_data_vector(thermal->get_dof_handler(), thermal->temperature(), "temperature");
-    const auto fields = mechanical->cell_fields();
-    for (unsigned int i = 0; i < fields.names.size(); ++i)
-      data_out.add_data_vector(fields.values[i], fields.names[i], DataOut<dim>::type_cell_data);
+    if (mechanical)
+      {
+        data_out.attach_dof_handler(mechanical->get_dof_handler());
+        std::vector<DataComponentInterpretation::DataComponentInterpretation> interpretation(
+          dim, DataComponentInterpretation::component_is_part_of_vector);
+        data_out.add_data_vector(mechanical->displacement(),
+                                 std::vector<std::string>(dim, "displacement"),
+                                 DataOut<dim>::type_dof_data, interpretation);
+        if (mechanical->is_dynamic())
+          data_out.add_data_vector(mechanical->velocity(), std::vector<std::string>(dim, "velocity"),
+                                   DataOut<dim>::type_dof_data, interpretation);
+        if (thermal)
+          data_out.add_data_vector(thermal->get_dof_handler(), thermal->temperature(), "temperature");
+        const auto fields = mechanical->cell_fields();
+        for (unsigned int i = 0; i < fields.names.size(); ++i)
+          data_out.add_data_vector(fields.values[i], fields.names[i], DataOut<dim>::type_cell_data);
+      }
+    else
+      {
+        data_out.attach_dof_handler(thermal->get_dof_handler());
+        data_out.add_data_vector(thermal->temperature(), "temperature");
+      }
     Vector<float> rank(triangulation.n_active_cells());
     rank = Utilities::MPI::this_mpi_process(mpi_communicator);
     data_out.add_data_vector(rank, "rank", DataOut<dim>::type_cell_data);
-    data_out.build_patches(mechanical->get_mapping());
+    data_out.build_patches(mechanical ? mechanical->get_mapping() : thermal->get_mapping());
     // best_compression costs several seconds per write at 10⁵ cells.
     DataOutBase::VtkFlags flags;
     flags.compression_level = DataOutBase::VtkFlags::best_speed;
@@ -270,16 +351,28 @@ namespace anvil
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       std::filesystem::create_directories(dir);
     MPI_Barrier(mpi_communicator);
-    mechanical->prepare_checkpoint();
+    // Attachments are read back in this order: mechanics (vectors, points), heat.
+    if (mechanical)
+      mechanical->prepare_checkpoint();
+    if (thermal)
+      thermal->prepare_checkpoint();
     triangulation.save(dir + "/mesh");
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
         std::ofstream state(dir + "/state.txt");
         state << std::setprecision(17) << t << ' ' << dt << ' ' << n_steps << ' ' << n_cut_backs
               << ' ' << n_newton << ' ' << n_linear << '\n';
-        for (const double x : mechanical->checkpoint_scalars())
-          state << x << ' ';
-        state << '\n' << pvd_records.size() << '\n';
+        auto line = [&](const std::vector<double> &values) {
+          state << values.size();
+          for (const double x : values)
+            state << ' ' << x;
+          state << '\n';
+        };
+        line(mechanical ? mechanical->checkpoint_scalars() : std::vector<double>());
+        line(thermal ? thermal->checkpoint_scalars() : std::vector<double>());
+        line({initial_heat_content, heat_audit.plastic, heat_audit.thermoelastic,
+              double(n_thermal_steps), double(n_thermal_nonlinear), double(n_staggered_iterations)});
+        state << pvd_records.size() << '\n';
         for (const auto &[time, name] : pvd_records)
           state << time << ' ' << name << '\n';
       }
@@ -288,13 +381,38 @@ namespace anvil
   template <int dim>
   void Simulator<dim>::read_checkpoint(double &t, double &dt)
   {
-    mechanical->load_checkpoint();
+    if (mechanical)
+      mechanical->load_checkpoint();
+    if (thermal)
+      thermal->load_checkpoint();
     std::ifstream state(restart_directory + "/state.txt");
     state >> t >> dt >> n_steps >> n_cut_backs >> n_newton >> n_linear;
-    std::vector<double> scalars(mechanical->checkpoint_scalars().size());
-    for (double &x : scalars)
-      state >> x;
-    mechanical->restore_scalars(scalars);
+    auto line = [&]() {
+      std::size_t n = 0;
+      state >> n;
+      std::vector<double> values(state ? n : 0);
+      for (double &x : values)
+        state >> x;
+      return values;
+    };
+    const auto mechanical_scalars = line();
+    const auto thermal_scalars    = line();
+    const auto heat_scalars       = line();
+    if (!state || (mechanical && mechanical_scalars.empty()) || (thermal && thermal_scalars.empty()) ||
+        heat_scalars.size() != 6)
+      throw InputError(restart_directory +
+                       "/state.txt: the checkpoint was not written by this scene's physics "
+                       "(Physics/Coupling differs) or is damaged");
+    if (mechanical)
+      mechanical->restore_scalars(mechanical_scalars);
+    if (thermal)
+      thermal->restore_scalars(thermal_scalars);
+    initial_heat_content     = heat_scalars[0];
+    heat_audit.plastic       = heat_scalars[1];
+    heat_audit.thermoelastic = heat_scalars[2];
+    n_thermal_steps          = static_cast<unsigned long>(heat_scalars[3]);
+    n_thermal_nonlinear      = static_cast<unsigned long>(heat_scalars[4]);
+    n_staggered_iterations   = static_cast<unsigned long>(heat_scalars[5]);
     std::size_t n = 0;
     state >> n;
     pvd_records.resize(n);
@@ -311,8 +429,15 @@ namespace anvil
     qoi_values.clear();
     if (quantities.empty())
       return;
-    const auto fields = mechanical->cell_fields();
-    auto field_index  = [&](const std::string &f) {
+    typename MechanicalProblem<dim>::CellFields fields;
+    if (mechanical)
+      fields = mechanical->cell_fields();
+    if (thermal)
+      {
+        fields.names.push_back("temperature");
+        fields.values.push_back(thermal->cell_mean_temperature());
+      }
+    auto field_index = [&](const std::string &f) {
       return std::find(fields.names.begin(), fields.names.end(), f) - fields.names.begin();
     };
     for (const auto &q : quantities)
@@ -327,8 +452,11 @@ namespace anvil
             Tensor<1, dim>        u;
             SymmetricTensor<2, 3> s;
             double                eqps = 0;
-            mechanical->probe(p.point, u, s, eqps);
-            if (q.field[0] == 'u' && q.field.size() == 2)
+            if (mechanical)
+              mechanical->probe(p.point, u, s, eqps);
+            if (q.field == "temperature")
+              value = thermal->temperature_at(p.point);
+            else if (q.field[0] == 'u' && q.field.size() == 2)
               value = u[q.component];
             else if (q.field == "equivalent_plastic_strain")
               value = eqps;
@@ -379,7 +507,10 @@ namespace anvil
     s.set("dimension", dim);
     s.set("processes", Utilities::MPI::n_mpi_processes(mpi_communicator));
     s.set("cells", triangulation.n_global_active_cells());
-    s.set("dofs", mechanical->n_dofs());
+    s.set("coupling", coupling);
+    s.set("dofs", mechanical ? double(mechanical->n_dofs()) : 0.);
+    if (thermal)
+      s.set("temperature_dofs", double(thermal->n_dofs()));
     s.set("time", current_time);
     s.set("steps", n_steps);
     s.set("cut_backs", n_cut_backs);
@@ -388,25 +519,43 @@ namespace anvil
     s.set("wall_time", MPI_Wtime() - wall_start);
     for (const auto &[section, seconds] : timer->get_summary_data(TimerOutput::total_wall_time))
       s.set("wall_time_per_phase", section, Utilities::MPI::max(seconds, mpi_communicator));
-    const double assembly = Utilities::MPI::min(mechanical->last_assembly_rate(), mpi_communicator);
-    s.set("assembly_cells_per_second_per_process", assembly);
+    if (mechanical)
+      {
+        const double assembly =
+          Utilities::MPI::min(mechanical->last_assembly_rate(), mpi_communicator);
+        s.set("assembly_cells_per_second_per_process", assembly);
+      }
     const double memory = Utilities::MPI::sum(peak_memory_mb(), mpi_communicator);
     s.set("peak_memory_MB", memory);
-    s.set("memory_per_dof_bytes", memory * 1024. * 1024. / std::max<double>(1, mechanical->n_dofs()));
-    const auto &e = mechanical->energy();
-    s.set("energy", "external_work", e.external_work);
-    s.set("energy", "internal_work", e.internal_work);
-    s.set("energy", "kinetic_energy", e.kinetic);
-    s.set("energy", "initial_kinetic_energy", e.initial_kinetic);
-    s.set("energy", "plastic_work", e.plastic_work);
-    s.set("energy", "elastic_energy", e.elastic_energy);
-    s.set("energy", "stress_work", e.stress_work);
-    s.set("energy", "balance_error", e.balance_error());
+    const double all_dofs =
+      (mechanical ? mechanical->n_dofs() : 0) + (thermal ? thermal->n_dofs() : 0);
+    s.set("memory_per_dof_bytes", memory * 1024. * 1024. / std::max<double>(1, all_dofs));
+    if (mechanical)
+      {
+        const auto &e = mechanical->energy();
+        s.set("energy", "external_work", e.external_work);
+        s.set("energy", "internal_work", e.internal_work);
+        s.set("energy", "kinetic_energy", e.kinetic);
+        s.set("energy", "initial_kinetic_energy", e.initial_kinetic);
+        s.set("energy", "plastic_work", e.plastic_work);
+        s.set("energy", "elastic_energy", e.elastic_energy);
+        s.set("energy", "stress_work", e.stress_work);
+        s.set("energy", "balance_error", e.balance_error());
+      }
     if (thermal)
       {
-        s.set("heat", "heat_content", thermal->heat_content());
-        s.set("heat", "heat_content_change", thermal->heat_content() - initial_heat_content);
+        const auto b = heat_balance();
+        s.set("heat", "heat_content", b.content);
+        s.set("heat", "heat_content_change", b.change);
+        s.set("heat", "boundary_heat_in", b.boundary);
+        s.set("heat", "source_heat", b.source);
+        s.set("heat", "plastic_heat", b.plastic);
+        s.set("heat", "thermoelastic_heat", b.thermoelastic);
+        s.set("heat", "balance_error", b.error);
         s.set("heat", "arkode_internal_steps", double(n_thermal_steps));
+        s.set("heat", "arkode_steps_per_step", n_steps ? double(n_thermal_steps) / n_steps : 0.);
+        s.set("heat", "arkode_nonlinear_iterations", double(n_thermal_nonlinear));
+        s.set("heat", "staggered_iterations", double(n_staggered_iterations));
       }
     for (const auto &[name, value] : qoi_values)
       s.set("quantities_of_interest", name, value);

@@ -19,6 +19,14 @@ namespace anvil
                       "Mass density rho in t/mm^3 (= N s^2/mm^4); steel 7.8e-9, aluminium 2.7e-9.");
     prm.declare_entry("Heat capacity", "4.6e8", Patterns::Double(0),
                       "Specific heat c in mm^2/(s^2 K) (= mJ/(t K)); steel 4.6e8, aluminium 9e8.");
+    prm.declare_entry("Heat capacity at", "constant stress",
+                      Patterns::Selection("constant stress|constant volume"),
+                      "What Heat capacity is: constant stress (c_p, as handbooks give it; the "
+                      "thermoelastic heat comes from the stress-producing volume change "
+                      "tr(D - beta dT/dt I)) or constant volume (c_v, the seed's eq. 8; the "
+                      "thermoelastic heat comes from all of tr D = dJ/dt / J, eq. 22). The two are "
+                      "the same material when c_p = c_v + 9 K beta^2 T / rho; "
+                      "doc/thermodynamics.md.");
     prm.declare_entry("Thermal expansion", "0", Patterns::Double(0),
                       "Linear thermal expansion coefficient beta in 1/K (seed eq. 19).");
     prm.declare_entry("Reference temperature", "293", Patterns::Double(0),
@@ -46,6 +54,7 @@ namespace anvil
     density               = prm.get_double("Density");
     heat_capacity         = prm.get_double("Heat capacity");
     thermal_expansion     = prm.get_double("Thermal expansion");
+    capacity_at_constant_volume = prm.get("Heat capacity at") == "constant volume";
     reference_temperature = prm.get_double("Reference temperature");
     taylor_quinney        = prm.get_double("Taylor-Quinney coefficient");
     prm.enter_subsection("Modulus temperature factor");

@@ -172,12 +172,16 @@ namespace anvil
           }
         // Armero–Simo: the step's own heating changes the temperature the
         // return map sees. ΔT_ad = Δt (χẆirr + Ẇthel)/(ρc) is a scalar
-        // fixed point; secant iteration (it contracts strongly for metals).
+        // fixed point x = f(Δε, σ̃ₙ, x); secant iteration (it contracts for
+        // metals: f' ≈ τ = 9Kβ²T/(ρc) ≈ 0.01–0.05).
+        const bool            tangent = request & request_tangent;
+        const MaterialRequest inner =
+          tangent ? request | request_temperature_derivative : request;
         double x0 = 0, f0 = 0, x1 = 0, f1 = 0;
         for (unsigned int it = 0; it < 50; ++it)
           {
             compute(increment, increment.temperature + x1, increment.temperature_increment + x1,
-                    request, response);
+                    inner, response);
             f1 = response.adiabatic_temperature_increment - x1;
             if (std::abs(f1) <= 1e-12 * (1 + std::abs(x1)))
               break;
@@ -189,6 +193,32 @@ namespace anvil
               throw MaterialPointError("the adiabatic temperature change did not converge");
           }
         response.adiabatic_temperature_increment = x1;
+        if (tangent)
+          {
+            // Consistent tangent of the adiabatic update: with x = f(Δε, σ̃ₙ, x),
+            //   dx/dΔε = ∂f/∂Δε / (1 − ∂f/∂x),  dσ/dΔε = C + ∂σ/∂T ⊗ dx/dΔε
+            // (and likewise for σ̃ₙ). ∂f/∂x (every temperature dependence of
+            // the moduli, the yield stress and the viscosity) by a one-sided
+            // difference; the current state is kept.
+            const SymmetricTensor<2, 3> df_de = adiabatic_strain_derivative,
+                                        df_ds = adiabatic_stress_derivative;
+            const SymmetricTensor<2, 3> saved_stress = current;
+            const double                saved_eps    = eps_c;
+            const double                h            = 1e-7 * (1 + std::abs(increment.temperature));
+            MaterialResponse            shifted;
+            compute(increment, increment.temperature + x1 + h,
+                    increment.temperature_increment + x1 + h, request_stress, shifted);
+            current = saved_stress, eps_c = saved_eps;
+            const double df_dx =
+              (shifted.adiabatic_temperature_increment - (x1 + f1)) / h; // f(x1) = x1 + f1
+            const double                amplification = 1 / (1 - df_dx);
+            const SymmetricTensor<2, 3> &dsigma_dT = response.stress_temperature_derivative;
+            response.tangent += amplification * outer_product(dsigma_dT, df_de);
+            if (response.sensitivity_is_identity)
+              response.rotated_stress_sensitivity = identity_tensor<3>();
+            response.sensitivity_is_identity = false;
+            response.rotated_stress_sensitivity += amplification * outer_product(dsigma_dT, df_ds);
+          }
       }
 
       void commit() override
@@ -245,6 +275,8 @@ namespace anvil
       const J2Model        &model;
       SymmetricTensor<2, 3> stress_n, current;
       double                eps_n = 0, eps_c = 0;
+      // ∂ΔT_ad/∂Δε and ∂ΔT_ad/∂σ̃ₙ at fixed temperature (adiabatic tangent).
+      SymmetricTensor<2, 3> adiabatic_strain_derivative, adiabatic_stress_derivative;
     };
 
     MaterialPointError no_plastic_solution(const double T)
@@ -570,21 +602,42 @@ namespace anvil
 
       // Heat sources over the step (always cheap; needed by the adiabatic loop).
       const double dt   = inc.time_step;
-      double       work = 0;
+      double       work = 0, dwork_dq = 0;
       if (dp > 0)
         {
           // Ẇirr = σ̄ ε̄̇ (eq. 21) with σ̄ averaged over the step (exact for linear
           // hardening); flow starts at the yield stress if the step began elastic.
-          const double q_end = q_trial - 3 * G * dp;
-          const double q_old = std::sqrt(1.5) * deviator(stress_n).norm();
-          work               = 0.5 * (std::max(q_old, Y_start.stress) + q_end) * dp;
+          const double q_end   = q_trial - 3 * G * dp;
+          const double q_old   = std::sqrt(1.5) * deviator(stress_n).norm();
+          const double q_start = std::max(q_old, Y_start.stress);
+          work                 = 0.5 * (q_start + q_end) * dp;
+          // d(work)/dq_trial with dΔε̄/dq_tr = 1/(3G + H), dq_end/dq_tr = H/(3G + H).
+          dwork_dq = 0.5 * (H * dp + q_start + q_end) / (3 * G + H);
         }
+      // Reversible volume change that heats or cools (doc/thermodynamics.md):
+      // with c at constant stress, the stress-producing part tr(Δε − βΔT I);
+      // with c at constant volume (the seed's eq. 8 and 22), all of tr Δε.
+      const double tr_rev = el.capacity_at_constant_volume ? tr_de + 3 * beta * dT : tr_de;
+      const double rho_c  = el.density * el.heat_capacity;
       response.plastic_work_rate        = work / dt;
       response.plastic_dissipation_rate = el.taylor_quinney * work / dt;
       // Ẇthel = −3Kβ T tr(Δεᵉ)/Δt (plastic flow is isochoric), doc/thermodynamics.md.
-      response.thermoelastic_heating_rate = -3 * K * beta * T * tr_de / dt;
+      response.thermoelastic_heating_rate = -3 * K * beta * T * tr_rev / dt;
       response.adiabatic_temperature_increment =
-        (el.taylor_quinney * work - 3 * K * beta * T * tr_de) / (el.density * el.heat_capacity);
+        (el.taylor_quinney * work - 3 * K * beta * T * tr_rev) / rho_c;
+      if (inc.adiabatic && (request & request_tangent))
+        {
+          // Partial derivatives of ΔT_ad at fixed T: ∂q_tr/∂Δε = √6 G n,
+          // ∂q_tr/∂σ̃ₙ = √(3/2) n, ∂tr_rev/∂Δε = I.
+          SymmetricTensor<2, 3> n_t;
+          for (unsigned int c = 0; c < 6; ++c)
+            n_t.access_raw_entry(c) = n[c];
+          const double chi = el.taylor_quinney;
+          adiabatic_strain_derivative =
+            (chi * dwork_dq * std::sqrt(6.) * G * n_t - 3 * K * beta * T * unit_symmetric_tensor<3>()) /
+            rho_c;
+          adiabatic_stress_derivative = (chi * dwork_dq * std::sqrt(1.5) / rho_c) * n_t;
+        }
     }
   } // namespace
 

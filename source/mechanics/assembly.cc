@@ -259,6 +259,7 @@ namespace anvil
             step_plastic_work += response.plastic_work_rate * current_time_step * J * w;
             heat_sources[point_index] =
               response.plastic_dissipation_rate + response.thermoelastic_heating_rate;
+            thermoelastic_sources[point_index] = response.thermoelastic_heating_rate;
             if (temperature_field)
               material_temperature[point_index] =
                 increment.temperature +

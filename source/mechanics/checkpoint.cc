@@ -50,6 +50,9 @@ namespace anvil
             data.push_back(state.size());
             data.insert(data.end(), state.begin(), state.end());
           }
+        // The temperature each point ended its last step at (heat scenes).
+        for (unsigned int q = 0; q < n_q; ++q)
+          data.push_back(material_temperature_old[cell->active_cell_index() * n_q + q]);
         std::vector<char> bytes(data.size() * sizeof(double));
         std::memcpy(bytes.data(), data.data(), bytes.size());
         return bytes;
@@ -89,6 +92,9 @@ namespace anvil
             k += size;
             points[cell->active_cell_index() * n_q + q]->load_state(state);
           }
+        for (unsigned int q = 0; q < n_q; ++q)
+          material_temperature_old[cell->active_cell_index() * n_q + q] =
+            material_temperature[cell->active_cell_index() * n_q + q] = data.at(k++);
       });
 
     owned_solution           = owned_old_solution;

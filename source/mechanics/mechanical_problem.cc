@@ -249,6 +249,7 @@ namespace anvil
     points.clear();
     points.resize(triangulation.n_active_cells() * n_q);
     heat_sources.assign(triangulation.n_active_cells() * n_q, 0.);
+    thermoelastic_sources = heat_sources;
     material_temperature.assign(heat_sources.size(), parameters.temperature);
     material_temperature_old = material_temperature;
     for (const auto &cell : triangulation.active_cell_iterators())

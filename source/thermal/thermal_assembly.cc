@@ -2,6 +2,7 @@
 // the heat balance integrals and the linear solvers behind ARKode.
 #include <deal.II/base/utilities.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/lac/solver_cg.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/numerics/vector_tools.h>
@@ -9,6 +10,7 @@
 #include <anvil/thermal/thermal_problem.h>
 
 #include <cmath>
+#include <limits>
 
 namespace anvil
 {
@@ -426,6 +428,70 @@ namespace anvil
                  (parameters.axisymmetric ? 2 * numbers::PI * fe_values.quadrature_point(q)[0] : 1.);
         }
     return Utilities::MPI::sum(H, mpi_communicator);
+  }
+
+  template <int dim>
+  double ThermalProblem<dim>::integrate(const HeatSource &source) const
+  {
+    FEValues<dim> fe_values(get_mapping(), fe, quadrature, update_JxW_values | update_quadrature_points);
+    double        total = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            total += source(cell, q) * fe_values.JxW(q) *
+                     (parameters.axisymmetric ? 2 * numbers::PI * fe_values.quadrature_point(q)[0] : 1.);
+        }
+    return Utilities::MPI::sum(total, mpi_communicator);
+  }
+
+  template <int dim>
+  double ThermalProblem<dim>::temperature_at(const Point<dim> &point) const
+  {
+    double value = 0, found = 0;
+    try
+      {
+        const auto cell_and_point =
+          GridTools::find_active_cell_around_point(reference_mapping, dof_handler, point);
+        const auto &cell = cell_and_point.first;
+        if (cell.state() == IteratorState::valid && cell->is_locally_owned())
+          {
+            const Quadrature<dim> q(GeometryInfo<dim>::project_to_unit_cell(cell_and_point.second));
+            FEValues<dim>         fe_values(reference_mapping, fe, q, update_values);
+            fe_values.reinit(cell);
+            std::vector<double> T(1);
+            fe_values.get_function_values(temperature_ghosted, T);
+            value = T[0];
+            found = 1;
+          }
+      }
+    catch (...)
+      {
+        // not in this rank's part of the mesh
+      }
+    const double n = Utilities::MPI::sum(found, mpi_communicator);
+    value          = Utilities::MPI::sum(value, mpi_communicator);
+    return n > 0 ? value / n : std::numeric_limits<double>::quiet_NaN();
+  }
+
+  template <int dim>
+  dealii::Vector<double> ThermalProblem<dim>::cell_mean_temperature() const
+  {
+    dealii::Vector<double> mean(triangulation.n_active_cells());
+    FEValues<dim>         fe_values(reference_mapping, fe, quadrature, update_values | update_JxW_values);
+    std::vector<double>   T(quadrature.size());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(temperature_ghosted, T);
+          double sum = 0, volume = 0;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            sum += T[q] * fe_values.JxW(q), volume += fe_values.JxW(q);
+          mean[cell->active_cell_index()] = sum / volume;
+        }
+    return mean;
   }
 
   template <int dim>

@@ -460,6 +460,49 @@ namespace anvil
     data_out.add_data_vector(dof_handler, temperature_ghosted, "temperature");
   }
 
+  template <int dim>
+  void ThermalProblem<dim>::prepare_checkpoint()
+  {
+    checkpoint_vector.reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+    checkpoint_vector = old_solution;
+    checkpoint_transfer = std::make_unique<parallel::distributed::SolutionTransfer<dim, Vector>>(dof_handler);
+    checkpoint_transfer->prepare_for_serialization(checkpoint_vector);
+  }
+
+  template <int dim>
+  void ThermalProblem<dim>::load_checkpoint()
+  {
+    parallel::distributed::SolutionTransfer<dim, Vector> transfer(dof_handler);
+    transfer.deserialize(old_solution);
+    solution                = old_solution;
+    old_temperature_ghosted = old_solution;
+    temperature_ghosted     = old_solution;
+    operators_current       = false;
+  }
+
+  template <int dim>
+  std::vector<double> ThermalProblem<dim>::checkpoint_scalars() const
+  {
+    // committed time, last internal step, source heat, then (id, heat) pairs.
+    std::vector<double> v = {committed_time, last_internal_step, total_source,
+                             double(total_heat_in.size())};
+    for (const auto &[id, q] : total_heat_in)
+      v.insert(v.end(), {double(id), q});
+    return v;
+  }
+
+  template <int dim>
+  void ThermalProblem<dim>::restore_scalars(const std::vector<double> &v)
+  {
+    committed_time     = v.at(0);
+    last_internal_step = v.at(1);
+    total_source       = v.at(2);
+    total_heat_in.clear();
+    const std::size_t n = static_cast<std::size_t>(v.at(3));
+    for (std::size_t k = 0; k < n; ++k)
+      total_heat_in[static_cast<types::boundary_id>(v.at(4 + 2 * k))] = v.at(5 + 2 * k);
+  }
+
   template class ThermalBoundaryConditions<2>;
   template class ThermalBoundaryConditions<3>;
   template class ThermalProblem<2>;

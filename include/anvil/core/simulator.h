@@ -49,7 +49,6 @@ namespace anvil
       return qoi_values;
     }
 
-    const MechanicalProblem<dim> &mechanics() const { return *mechanical; }
 
   private:
     struct TimeParameters
@@ -69,6 +68,36 @@ namespace anvil
       int                        body     = -1;
       unsigned int               component = 0;
     };
+
+    /// What one coupled step did (both halves, all staggered iterations).
+    struct CoupledStep
+    {
+      bool        converged = true;
+      std::string failure;
+      typename MechanicalProblem<dim>::StepResult mechanics; // the last mechanical solve
+      typename ThermalProblem<dim>::Statistics    thermal;   // summed over the thermal solves
+      unsigned int staggered_iterations = 0;
+      double       staggered_change = 0, contraction = 0;    // K, ratio of successive changes
+      double       mechanical_wall = 0, thermal_wall = 0;    // s
+    };
+    /// Advance every physics the scene has from @p t_old to @p t_new with the
+    /// chosen coupling; on failure both are back at t_old.
+    CoupledStep advance(double t_old, double t_new);
+    /// Heat made in the bodies, accumulated over accepted steps (mJ).
+    struct HeatAudit
+    {
+      double plastic = 0, thermoelastic = 0;
+    };
+
+    /// The heat balance since t = 0 (mJ): content, its change, heat in through
+    /// boundaries, volume sources, plastic and thermoelastic heat, and the
+    /// relative error of change = boundary + all sources.
+    struct HeatBalance
+    {
+      double content = 0, change = 0, boundary = 0, source = 0, plastic = 0, thermoelastic = 0,
+             error = 0;
+    };
+    HeatBalance heat_balance() const;
 
     void parse_output(dealii::ParameterHandler &prm, Scene &scene);
     void open_histories();
@@ -90,8 +119,12 @@ namespace anvil
     std::map<dealii::types::material_id, std::shared_ptr<const MaterialModel>> materials;
     std::unique_ptr<MechanicalProblem<dim>>      mechanical;
     // Heat (built only if Physics/Heat is on).
-    bool                                         heat = false;
+    bool                                         heat = false, mechanics = true;
     std::string                                  coupling;
+    double                                       staggered_tolerance = 1e-6;
+    unsigned int                                 max_staggered_iterations = 30;
+    HeatAudit                                    heat_audit;
+    unsigned long                                n_thermal_nonlinear = 0, n_staggered_iterations = 0;
     typename ThermalProblem<dim>::Parameters     thermal_parameters;
     ThermalBoundaryConditions<dim>               thermal_boundary_conditions;
     std::map<dealii::types::material_id, ThermalMaterial> thermal_materials;
@@ -115,7 +148,7 @@ namespace anvil
     std::vector<Quantity> quantities;
     std::vector<std::pair<std::string, double>> qoi_values;
     std::vector<std::pair<double, std::string>> pvd_records;
-    CsvHistory reactions_csv, probes_csv, energy_csv, newton_csv;
+    CsvHistory reactions_csv, probes_csv, energy_csv, newton_csv, thermal_csv;
     std::vector<std::pair<std::string, dealii::types::boundary_id>> reaction_boundaries;
 
     unsigned int n_steps = 0, n_cut_backs = 0, n_newton = 0, n_linear = 0;

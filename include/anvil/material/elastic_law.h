@@ -42,6 +42,10 @@ namespace anvil
     double thermal_expansion  = 0;      // 1/K (β, eq. 19)
     double reference_temperature = 293; // K: where the moduli are K₀, G₀
     double taylor_quinney     = 0.9;    // χ
+    /// c is at constant volume (the seed's c_v, eq. 8; Ẇthel from all of
+    /// tr D) rather than at constant stress (handbook c_p; Ẇthel from the
+    /// stress-producing tr(D − βṪ I)). doc/thermodynamics.md.
+    bool capacity_at_constant_volume = false;
 
   private:
     double         K0 = 0, G0 = 0;

@@ -157,6 +157,12 @@ namespace anvil
     {
       return heat_sources[cell->active_cell_index() * quadrature.size() + q];
     }
+    /// Its thermoelastic part Ẇthel alone (the rest is plastic heat χẆirr).
+    double thermoelastic_source(const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
+                                unsigned int q) const
+    {
+      return thermoelastic_sources[cell->active_cell_index() * quadrature.size() + q];
+    }
     const dealii::Quadrature<dim> &get_quadrature() const { return quadrature; }
 
     /// Largest increment of equivalent plastic strain at a point in the last solve.
@@ -248,6 +254,7 @@ namespace anvil
     // indexed by active_cell_index * n_q_points + q.
     std::vector<std::unique_ptr<MaterialPoint>> points;
     std::vector<double>                         heat_sources; // per point, last assembly
+    std::vector<double>                         thermoelastic_sources;
     TemperatureField                            temperature_field;
     bool                                        adiabatic_split = false;
     // The temperature each point ended its last update at (current and committed).

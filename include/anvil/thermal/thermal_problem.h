@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/base/timer.h>
+#include <deal.II/distributed/solution_transfer.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
@@ -188,6 +189,23 @@ namespace anvil
 
     /// ∫ ρ c T dv over the current configuration (N·mm = mJ).
     double heat_content() const;
+    /// ∫ s dv over the current configuration of a per-quadrature-point rate
+    /// (mW/mm³ → mW), as the thermal phase integrates its sources.
+    double integrate(const HeatSource &s) const;
+    /// T at a point of the reference configuration (K; NaN if outside the mesh).
+    double temperature_at(const dealii::Point<dim> &point) const;
+    /// Mean temperature of each locally owned cell (by active_cell_index; K).
+    dealii::Vector<double> cell_mean_temperature() const;
+    dealii::types::global_dof_index n_dofs() const { return dof_handler.n_dofs(); }
+
+    /// Checkpoint: attach the committed temperature to the triangulation (call
+    /// before Triangulation::save, after the mechanics' own attachments), and
+    /// read it back after Triangulation::load in the same order.
+    void prepare_checkpoint();
+    void load_checkpoint();
+    /// Heat-balance accumulators and the last internal step, for state.txt.
+    std::vector<double> checkpoint_scalars() const;
+    void                restore_scalars(const std::vector<double> &values);
     /// Heat that entered through each flux/convection/radiation boundary during
     /// the last solve_step (mJ, trapezoidal in time).
     const std::map<dealii::types::boundary_id, double> &step_boundary_heat() const
@@ -274,6 +292,8 @@ namespace anvil
     std::map<dealii::types::boundary_id, double> step_heat_in, total_heat_in;
     double step_dirichlet_heat_in = 0, step_source = 0, total_source = 0;
 
+    std::unique_ptr<dealii::parallel::distributed::SolutionTransfer<dim, Vector>> checkpoint_transfer;
+    Vector checkpoint_vector;
     mutable std::unique_ptr<dealii::FEValues<dim>> point_values;
     mutable std::unique_ptr<dealii::Quadrature<dim>> point_quadrature;
   };
