@@ -618,7 +618,8 @@ namespace anvil
       // with c at constant stress, the stress-producing part tr(Δε − βΔT I);
       // with c at constant volume (the seed's eq. 8 and 22), all of tr Δε.
       const double tr_rev = el.capacity_at_constant_volume ? tr_de + 3 * beta * dT : tr_de;
-      const double rho_c  = el.density * el.heat_capacity;
+      // Sources per current volume, capacity per reference volume (ρ₀c/J per current volume).
+      const double rho_c  = el.density * el.heat_capacity / inc.volume_ratio;
       response.plastic_work_rate        = work / dt;
       response.plastic_dissipation_rate = el.taylor_quinney * work / dt;
       // Ẇthel = −3Kβ T tr(Δεᵉ)/Δt (plastic flow is isochoric), doc/thermodynamics.md.

@@ -231,6 +231,7 @@ namespace anvil
               temperature_field ? T_new[q] - material_temperature_old[point_index] : 0.;
             increment.adiabatic = temperature_field && adiabatic_split;
             increment.time_step             = current_time_step;
+            increment.volume_ratio          = J;
             MaterialPoint &point = *points[cell->active_cell_index() * n_q + q];
             try
               {

@@ -44,6 +44,9 @@ namespace anvil
     double temperature           = 293.;
     double temperature_increment = 0.;
     double time_step             = 1.; // s
+    /// J = dv/dV at the point: the heat sources are per current volume, the
+    /// capacity ρ₀c per reference volume, so ΔT_ad = J Δt (χẆirr + Ẇthel)/(ρ₀c).
+    double volume_ratio = 1.;
     /**
      * Adiabatic update (Armero–Simo split): the point heats by its own
      * dissipation and thermoelastic effect during the increment,
