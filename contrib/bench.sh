@@ -54,3 +54,46 @@ print("targets: elastic assembly >= 300000 cells/s (2D), >= 40000 (3D); plastic 
 print("         3D 1M DoFs within 4096 B/DoF; <= 6 Newton iterations per step on the necking bar")
 PY
 "$ANVIL_BUILD/tests/bench_material_points" $([ "${1:-}" = "--small" ] && echo --quick)
+# Thermo-mechanical necking bar (prm/necking_bar_thermal.prm, Simo & Miehe 1992)
+# per coupling scheme: wall time, cost of the heat half against the mechanics
+# (target <= 25 %), ARKode steps, Newton and staggered iterations, temperatures.
+# --small: the 5 x 20 mesh instead of 10 x 40.
+thermal_sets=(--set "Output/Field interval=0" --set "Output/Verbosity=quiet")
+if [ "${1:-}" = "--small" ]; then thermal_sets+=(--set "Geometry/Radial cells=5" --set "Geometry/Axial cells=20"); fi
+for scheme in "isothermal split" "adiabatic split" "iterated staggered"; do
+  "$ANVIL_BUILD/anvil" "$ANVIL_ROOT/prm/necking_bar_thermal.prm" --set "Physics/Coupling=$scheme" \
+    --set "Output/Directory=$out/necking_thermal_${scheme%% *}" "${thermal_sets[@]}" \
+    || echo "necking_bar_thermal.prm, $scheme: anvil exited with status $?"
+done
+python3 - "$out" <<'PY'
+import csv, json, os, sys
+out = sys.argv[1]
+print("thermal necking bar (prm/necking_bar_thermal.prm), one process:")
+print("%-19s %6s %5s %7s %13s %10s %9s %10s %9s %9s %9s %8s" % (
+    "scheme", "steps", "cuts", "wall s", "heat/mech %", "ARKode/st", "Newton/st", "stagger/st",
+    "T max K", "T neck K", "F max kN", "neck mm"))
+for scheme in ("isothermal", "adiabatic", "iterated"):
+    d = "%s/necking_thermal_%s" % (out, scheme)
+    if not os.path.exists(d + "/summary.json"):
+        print("%-19s (no summary.json)" % scheme)
+        continue
+    s = json.load(open(d + "/summary.json"))
+    rows = list(csv.DictReader(open(d + "/thermal.csv")))
+    n = max(1, len(rows))
+    col = lambda k: sum(float(r[k]) for r in rows)
+    mech, heat = col("mechanics_wall_time"), col("thermal_wall_time")
+    F = [float(r["top_Fy"]) for r in csv.DictReader(open(d + "/reactions.csv"))]
+    q = s["quantities_of_interest"]
+    stag = "%10.2f" % (col("staggered_iterations") / n) if scheme == "iterated" else "%10s" % "-"
+    print("%-19s %6d %5d %7.2f %13.1f %10.2f %9.2f %s %9.1f %9.1f %9.3f %8.4f%s" % (
+        s["coupling"], s["steps"], s["cut_backs"], s["wall_time"], 100 * heat / max(mech, 1e-300),
+        col("arkode_steps") / n, s["newton_iterations"] / max(1, s["steps"]), stag,
+        q["max_temperature"], q["neck_centre_temperature"], max(F) / 1000,
+        6.2975 + q["neck_radius_change"], "" if s["status"] == "completed" else "  (" + s["status"] + ")"))
+    if scheme == "iterated":
+        print("%-19s ARKode steps per heat solve %.2f (1 + staggered iterations heat solves per step)"
+              % ("", col("arkode_steps") / (n + col("staggered_iterations"))))
+print("columns: heat/mech = sum thermal_wall_time / sum mechanics_wall_time (thermal.csv), target <= 25 %;")
+print("         ARKode/st, Newton/st, stagger/st per mechanical step; T max: largest cell-mean temperature;")
+print("         T neck: nodal temperature on the axis at mid-length; neck: final neck radius")
+PY

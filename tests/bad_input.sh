@@ -35,4 +35,6 @@ expect "malformed --set"    "expected 'Section/Subsection/Entry=value'"     "$an
 expect "unknown option"     "unknown option '--frobnicate'"               "$anvil" "$src/prm/cantilever.prm" --frobnicate
 expect "bad probe"          "--set: 'Output/Probes'"                       "$anvil" "$src/prm/cantilever.prm" --set "Output/Probes=tip: 10"
 expect "unknown QoI probe"  "'Output/Quantities of interest'.*no probe named 'tap'" "$anvil" "$src/prm/cantilever.prm" --set "Output/Quantities of interest=a: probe(tap, ux)"
+expect "reaction in a thermal-only scene" "--set: 'Output/Quantities of interest'.*reaction.*needs the mechanics.*thermal only" "$anvil" "$src/prm/heat_half_space.prm" --set "Output/Quantities of interest=r: reaction(left, x)"
+expect "unknown coupling"   "--set 'Physics/Coupling=heat'.*heat.*(mechanical only\|thermal only)" "$anvil" "$src/prm/heat_half_space.prm" --set "Physics/Coupling=heat"
 exit $fail

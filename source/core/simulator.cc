@@ -456,6 +456,7 @@ namespace anvil
     // T^(k), the heat again with its sources, until T stops changing.
     TrilinosWrappers::MPI::Vector previous(thermal->temperature());
     double                        last_change = 0;
+    unsigned int                  growing     = 0;
     for (unsigned int k = 1;; ++k)
       {
         if (k > max_staggered_iterations)
@@ -483,9 +484,13 @@ namespace anvil
         n_staggered_iterations += 1;
         if (dT <= staggered_tolerance)
           return result;
-        if (k > 2 && result.contraction >= 1)
+        // Two growing changes in a row, well above the tolerance (below it the
+        // changes are the thermal integrator's noise): the iteration diverges.
+        growing = k > 1 && result.contraction >= 1 && dT > 100 * staggered_tolerance ? growing + 1 : 0;
+        if (growing >= 2)
           return fail("the staggered iteration diverges (contraction " +
-                      Utilities::to_string(result.contraction, 3) + ")");
+                      Utilities::to_string(result.contraction, 3) +
+                      "): the coupling is too strong for it at this time step");
       }
   }
 
