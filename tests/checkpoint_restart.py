@@ -7,7 +7,11 @@
  2. A run that cannot go on (a plastic-increment limit no step can meet, and
     no room to cut back) exits with status 3, says why, and leaves its last
     converged fields, summary.json (status failed) and a checkpoint; resumed
-    from that checkpoint without the limit it completes with the same answer."""
+    from that checkpoint without the limit it completes with the same answer.
+ 3. A coupled heat scene (adiabatic split, convection, thermal softening and
+    expansion) stopped half way and resumed on two processes: the temperature
+    field, the points' temperatures and the heat audit come back, so the end
+    temperature, force and heat balance equal the uninterrupted run's."""
 import os
 from anvil_test import run, read_csv, check, close, finish
 
@@ -34,4 +38,26 @@ check(os.path.exists(out_fail + "/solution.pvd"), "and its last converged fields
 _, rescued, _ = run("prm/necking_bar.prm", base + ["Output/Restart from=" + out_fail + "/checkpoint"], name="ckpt_fail")
 close(rescued["quantities_of_interest"]["final_force"], full["quantities_of_interest"]["final_force"], 1e-9,
       "resumed after the failure: final force")
+
+heat = ["Physics/Coupling=adiabatic split", "Time/Time step=0.1",
+        "Bodies/body/Material/Elasticity/Thermal expansion=1.2e-5",
+        "Bodies/body/Material/Hardening/Thermal softening/Model=linear",
+        "Bodies/body/Material/Hardening/Thermal softening/Softening coefficient=2e-3",
+        "Bodies/body/Material/Hardening/Thermal softening/Reference temperature=293",
+        "Heat/Boundary conditions/Convection=bottom: 0.5, 293",
+        "Output/Probes=corner: 1.1, 1",
+        "Output/Quantities of interest=T: mean(temperature); Tmax: max(temperature); "
+        "Tc: probe(corner, temperature); F: reaction(bottom, y)"]
+out_full, full, _ = run("tests/plastic_block.prm", heat, name="ckpt_heat_full")
+out_half, _, _ = run("tests/plastic_block.prm", heat + ["Time/End time=0.5"], name="ckpt_heat_half")
+_, resumed, _ = run("tests/plastic_block.prm", heat + ["Output/Restart from=" + out_half + "/checkpoint"],
+                    np=2, name="ckpt_heat_half")
+for k, v in full["quantities_of_interest"].items():
+    close(resumed["quantities_of_interest"][k], v, 1e-8, "heat scene resumed on 2 processes: " + k)
+for k in ("heat_content_change", "plastic_heat", "thermoelastic_heat", "boundary_heat_in"):
+    close(resumed["heat"][k], full["heat"][k], 1e-7, "heat scene resumed: " + k + " (mJ)")
+a, b = read_csv(out_full + "/probes.csv"), read_csv(out_half + "/probes.csv")
+check(len(a["time"]) == len(b["time"]) and
+      max(abs(x - y) for x, y in zip(a["corner_temperature"], b["corner_temperature"])) < 1e-7,
+      "the same temperature history at the probe (%d rows)" % len(b["time"]))
 finish()
