@@ -37,4 +37,5 @@ expect "bad probe"          "--set: 'Output/Probes'"                       "$anv
 expect "unknown QoI probe"  "'Output/Quantities of interest'.*no probe named 'tap'" "$anvil" "$src/prm/cantilever.prm" --set "Output/Quantities of interest=a: probe(tap, ux)"
 expect "reaction in a thermal-only scene" "--set: 'Output/Quantities of interest'.*reaction.*needs the mechanics.*thermal only" "$anvil" "$src/prm/heat_half_space.prm" --set "Output/Quantities of interest=r: reaction(left, x)"
 expect "unknown coupling"   "--set 'Physics/Coupling=heat'.*heat.*(mechanical only\|thermal only)" "$anvil" "$src/prm/heat_half_space.prm" --set "Physics/Coupling=heat"
+expect "mechanics in a thermal-only scene" "--set: 'Boundary conditions/Displacement' is given, but Physics/Coupling is 'thermal only'" "$anvil" "$src/prm/heat_half_space.prm" --set "Boundary conditions/Displacement=left: ux = 0"
 exit $fail

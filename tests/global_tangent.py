@@ -2,7 +2,10 @@
 assembled residual (K du vs (R(u + h du) - R(u - h du)) / 2h, random du) at
 every Newton iteration of a plastic, large-strain scene with a follower
 pressure, for every element formulation: plane strain, axisymmetric and 3D,
-standard and F-bar; and Newton converges in few iterations.
+standard and F-bar, and for the adiabatic split (each point heats by its own
+dissipation and thermoelastic effect within the step, so the tangent carries
+dsigma/dT x d(dT_ad)/d(strain) and the J in dT_ad); and Newton converges in
+few iterations.
 
 The first iteration of a step after a plastic one is left out: there u = u_n
 and the yielded points sit exactly on the kink between elastic unloading and
@@ -22,6 +25,19 @@ cases = [
                                          "Geometry/Blocks=body: 0, 0, 1, 1, 4, 4"]),
     ("3D, F-bar", ["Dimension=3", "Geometry/Blocks=body: 0, 0, 0, 1, 1, 1, 3, 3, 3",
                    "Boundary conditions/Displacement=bottom: ux = 0, uy = 0, uz = 0; top: ux = 0.05*t, uy = -0.1*t, uz = 0.02*t"]),
+    ("plane strain, F-bar, adiabatic split", ["Physics/Coupling=adiabatic split",
+        "Bodies/body/Material/Elasticity/Thermal expansion=5e-5",
+        "Bodies/body/Material/Hardening/Thermal softening/Model=linear",
+        "Bodies/body/Material/Hardening/Thermal softening/Softening coefficient=2e-3",
+        "Bodies/body/Material/Hardening/Thermal softening/Reference temperature=293"]),
+    ("axisymmetric, F-bar, adiabatic split, c_v", ["Physics/Coupling=adiabatic split",
+        "Mechanics/Two-dimensional model=axisymmetric",
+        "Bodies/body/Material/Elasticity/Thermal expansion=5e-5",
+        "Bodies/body/Material/Elasticity/Heat capacity at=constant volume",
+        "Bodies/body/Material/Hardening/Thermal softening/Model=johnson-cook",
+        "Bodies/body/Material/Hardening/Thermal softening/Melting temperature=1700",
+        "Bodies/body/Material/Hardening/Thermal softening/Exponent=1.1",
+        "Bodies/body/Material/Hardening/Thermal softening/Reference temperature=293"]),
     ("3D, standard", ["Dimension=3", "Mechanics/Element=standard", "Geometry/Blocks=body: 0, 0, 0, 1, 1, 1, 3, 3, 3",
                       "Boundary conditions/Displacement=bottom: ux = 0, uy = 0, uz = 0; top: ux = 0.05*t, uy = -0.1*t, uz = 0.02*t"]),
 ]

@@ -142,6 +142,19 @@ namespace anvil
     prm.leave_subsection();
     heat      = coupling != "mechanical only";
     mechanics = coupling != "thermal only";
+    if (!mechanics)
+      {
+        // A thermal-only scene has no mechanics to apply these to: say so rather than ignore them.
+        std::vector<std::string> given;
+        for (const std::string entry : {"Displacement", "Velocity", "Pressure"})
+          if (!trim(prm.get({"Boundary conditions"}, entry)).empty())
+            given.push_back("Boundary conditions/" + entry);
+        if (!trim(prm.get({"Mechanics"}, "Gravity")).empty())
+          given.push_back("Mechanics/Gravity");
+        if (!given.empty())
+          scene.fail(given.front(), "is given, but Physics/Coupling is 'thermal only': the scene "
+                                    "has no mechanics (remove it, or choose a coupled scheme)");
+      }
     if (!(staggered_tolerance > 0))
       scene.fail("Physics/Staggered tolerance", "must be > 0 K");
     if (heat)

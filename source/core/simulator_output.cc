@@ -139,8 +139,9 @@ namespace anvil
                                   "' in Output/Probes");
             if (!is_field(q.field) && !(mechanics && q.field.size() == 2 && q.field[0] == 'u'))
               scene.fail(qpath, "item '" + item + "': unknown field '" + q.field +
-                                  "' for this scene (expected ux, uy" + (dim == 3 ? ", uz" : "") +
-                                  " or one of: " + known_fields + ")");
+                                  "' for this scene (expected " +
+                                  (mechanics ? std::string(dim == 3 ? "ux, uy, uz, " : "ux, uy, ") : "") +
+                                  "one of: " + known_fields + ")");
             if (q.field[0] == 'u' && q.field.size() == 2)
               q.component = component_of(q.field.substr(1));
           }

@@ -164,6 +164,7 @@ namespace anvil
                   const MaterialRequest    request,
                   MaterialResponse        &response) override
       {
+        response.volume_ratio_sensitivity = SymmetricTensor<2, 3>();
         if (!increment.adiabatic)
           {
             compute(increment, increment.temperature, increment.temperature_increment, request,
@@ -218,6 +219,8 @@ namespace anvil
               response.rotated_stress_sensitivity = identity_tensor<3>();
             response.sensitivity_is_identity = false;
             response.rotated_stress_sensitivity += amplification * outer_product(dsigma_dT, df_ds);
+            // f ∝ J (sources per current volume): ∂f/∂ln J = f(x1) = x1 + f1.
+            response.volume_ratio_sensitivity = (amplification * (x1 + f1)) * dsigma_dT;
           }
       }
 

@@ -323,6 +323,8 @@ namespace anvil
                 SymmetricTensor<2, 3> ds = dsigma[d];
                 if (f_bar)
                   ds = beta * dsigma[d] - alpha * F_inv[L][k] * dsigma_Fbar;
+                if (increment.adiabatic) // ΔT_ad ∝ J: δ ln J = tr(δF F⁻¹) of the true F
+                  ds += F_inv[L][k] * response.volume_ratio_sensitivity;
                 for (unsigned int c = 0; c < n_dir; ++c)
                   {
                     const unsigned int i = directions.kl[c].first, J_ = directions.kl[c].second;

@@ -1,6 +1,7 @@
 #include <anvil/output/csv_history.h>
 
 #include <cmath>
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -12,7 +13,9 @@ namespace anvil
     n_columns = columns.size();
     if (!write)
       return;
-    if (append)
+    // Continue a history (restart) only if there is one: a restart into
+    // another directory starts its files with their header.
+    if (append && std::ifstream(filename).good())
       {
         file.open(filename, std::ios::app);
         return;

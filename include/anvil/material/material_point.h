@@ -77,6 +77,9 @@ namespace anvil
     /// Ẇthel = −3Kβ T tr(Δεᵉ)/Δt (eq. 22 with the sign from thermodynamics,
     /// doc/thermodynamics.md): an elastic expansion cools. MPa/s.
     double thermoelastic_heating_rate = 0.;
+    /// ∂σ/∂ln J at fixed Δε (adiabatic update: ΔT_ad ∝ J), zero otherwise;
+    /// the mechanics adds ∂σ/∂ln J tr(δF F⁻¹) to δσ.
+    dealii::SymmetricTensor<2, 3> volume_ratio_sensitivity;
     /// Temperature change of the step if adiabatic: Δt (χẆirr + Ẇthel)/(ρc), K.
     double adiabatic_temperature_increment = 0.;
     /// Equivalent (visco)plastic strain after the increment.
