@@ -55,9 +55,13 @@ namespace anvil
       "phase, rho c dT = dt (chi W_irr + W_thel); iterated staggered: the two phases repeated "
       "within the step, the mechanics at the end-of-step temperature, until the temperature "
       "changes by less than Staggered tolerance (the accuracy reference for the splits).");
-    prm.declare_entry("Staggered tolerance", "1e-6", Patterns::Double(0),
+    prm.declare_entry("Staggered tolerance", "0", Patterns::Double(0),
                       "iterated staggered: largest change of a nodal temperature between two "
-                      "iterations at which the step is converged, K.");
+                      "iterations at which the step is converged, K. 0: automatic, ten times "
+                      "what the heat integration resolves (Heat/Time integration/Relative "
+                      "tolerance x max T + Absolute tolerance); a smaller value is raised to "
+                      "that (the iteration cannot converge below the integrator's own error) "
+                      "and a note says so.");
     prm.declare_entry("Staggered iterations", "30", Patterns::Integer(1),
                       "iterated staggered: iterations before the step is cut back.");
     prm.leave_subsection();
@@ -155,8 +159,6 @@ namespace anvil
           scene.fail(given.front(), "is given, but Physics/Coupling is 'thermal only': the scene "
                                     "has no mechanics (remove it, or choose a coupled scheme)");
       }
-    if (!(staggered_tolerance > 0))
-      scene.fail("Physics/Staggered tolerance", "must be > 0 K");
     if (heat)
       {
         thermal_parameters.parse_parameters(prm, scene);
@@ -423,9 +425,9 @@ namespace anvil
       result.failure   = why;
       return result;
     };
-    auto solve_mechanics = [&]() {
+    auto solve_mechanics = [&](const bool again = false) {
       const double start = MPI_Wtime();
-      auto         r     = mechanical->solve_step(t_old, t_new);
+      auto         r     = mechanical->solve_step(t_old, t_new, again);
       if (r.converged && mechanics_parameters.maximum_plastic_increment > 0 &&
           mechanical->largest_plastic_increment() > mechanics_parameters.maximum_plastic_increment)
         {
@@ -469,19 +471,30 @@ namespace anvil
     // T^(k), the heat again with its sources, until T stops changing.
     TrilinosWrappers::MPI::Vector previous(thermal->temperature());
     double                        last_change = 0;
+    // What the heat integration resolves: below it the changes are its noise.
+    const double resolution = thermal_parameters.relative_tolerance * previous.linfty_norm() +
+                              thermal_parameters.absolute_tolerance;
+    const double tolerance  = std::max(staggered_tolerance, 10 * resolution);
+    if (staggered_tolerance > 0 && tolerance > staggered_tolerance && !staggered_tolerance_noted)
+      {
+        staggered_tolerance_noted = true;
+        if (!quiet)
+          pcout << "  note: Physics/Staggered tolerance = " << staggered_tolerance
+                << " K is below what the heat integration resolves; using " << tolerance
+                << " K (tighten Heat/Time integration tolerances to go lower)" << std::endl;
+      }
     unsigned int                  growing     = 0;
     for (unsigned int k = 1;; ++k)
       {
         if (k > max_staggered_iterations)
           return fail("the staggered iteration did not reach " +
-                      Utilities::to_string(staggered_tolerance) + " K in " +
+                      Utilities::to_string(tolerance) + " K in " +
                       Utilities::to_string(max_staggered_iterations) + " iterations (last change " +
                       Utilities::to_string(last_change) + " K, contraction " +
                       Utilities::to_string(result.contraction) + ")");
         update_point_temperatures(); // T^(k) at the points
-        mechanical->revert_step();
         thermal->revert();
-        if (!solve_mechanics())
+        if (!solve_mechanics(/*again*/ true))
           return fail(result.mechanics.failure);
         if (!solve_heat())
           return fail("heat: " + result.thermal.failure);
@@ -495,15 +508,16 @@ namespace anvil
         result.staggered_iterations   = k;
         result.staggered_change       = dT;
         n_staggered_iterations += 1;
-        if (dT <= staggered_tolerance)
+        if (dT <= tolerance)
           return result;
         // Two growing changes in a row, well above the tolerance (below it the
         // changes are the thermal integrator's noise): the iteration diverges.
-        growing = k > 1 && result.contraction >= 1 && dT > 100 * staggered_tolerance ? growing + 1 : 0;
+        growing = k > 1 && result.contraction >= 1 && dT > 10 * tolerance ? growing + 1 : 0;
         if (growing >= 2)
           return fail("the staggered iteration diverges (contraction " +
                       Utilities::to_string(result.contraction, 3) +
-                      "): the coupling is too strong for it at this time step");
+                      "): the coupling is too strong for it at this time step; the splits, "
+                      "or a smaller step, may still work");
       }
   }
 

@@ -376,7 +376,8 @@ namespace anvil
 
   template <int dim>
   typename MechanicalProblem<dim>::StepResult
-  MechanicalProblem<dim>::solve_step(const double time_old, const double time_new)
+  MechanicalProblem<dim>::solve_step(const double time_old, const double time_new,
+                                     const bool from_last_solution)
   {
     StepResult result;
     current_time_step = time_new - time_old;
@@ -392,8 +393,11 @@ namespace anvil
     // (linear extrapolation in time), which puts yielding points on their
     // plastic branch from the first iteration; if that inverts an element,
     // from the committed configuration.
-    owned_solution = owned_old_solution;
-    if (parameters.extrapolate && previous_time_step > 0)
+    // Again on the same step (iterated staggered): from the last solution,
+    // which already satisfies the step's boundary values.
+    if (!from_last_solution)
+      owned_solution = owned_old_solution;
+    if (!from_last_solution && parameters.extrapolate && previous_time_step > 0)
       {
         owned_solution.add(current_time_step / previous_time_step, previous_increment);
         solution = owned_solution;

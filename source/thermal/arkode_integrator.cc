@@ -80,7 +80,7 @@ namespace anvil
                                                     /*minimum_step_size*/ 1e-14 * span,
                                                     settings.order,
                                                     settings.max_nonlinear_iterations,
-                                                    /*implicit_function_is_linear*/ false,
+                                                    /*implicit_function_is_linear*/ settings.linear,
                                                     /*implicit_function_is_time_independent*/ false,
                                                     /*mass_is_time_independent*/ true,
                                                     /*anderson_acceleration_subspace*/ 3,

@@ -41,6 +41,7 @@ namespace anvil
     struct IntegratorSettings
     {
       unsigned int order                    = 3; // DIRK: 2, 3, 4 or 5
+      bool         linear                   = false; // f linear in y: one Newton iteration per stage
       double       relative_tolerance       = 1e-6;
       double       absolute_tolerance       = 1e-6;
       double       fixed_step_size          = 0; // 0: adaptive

@@ -161,7 +161,8 @@ namespace anvil
                       "Newton matrix M + gamma K: direct (Amesos KLU), iterative (GMRES with AMG), "
                       "automatic: direct below 'Direct solver limit' DoFs.");
     prm.declare_entry("Mass matrix", "consistent", Patterns::Selection("consistent|lumped"),
-                      "consistent (solved by CG + Jacobi) or row-sum lumped.");
+                      "consistent (solved by CG + Jacobi) or lumped (row sums: a diagonal "
+                      "mass, cheaper, first-order accurate in space for the capacity).");
     prm.declare_entry("Direct solver limit", "100000", Patterns::Integer(0),
                       "Number of DoFs up to which 'automatic' chooses the direct solver.");
     prm.leave_subsection();
@@ -216,7 +217,12 @@ namespace anvil
     }
     int setup_jacobian(const double t, const Vector &y) override
     {
+      // Linear problems on a frozen geometry: the Jacobian −K is assembled
+      // once per configuration (unless a convection coefficient may vary in time).
+      if (p.linear && p.tangent_current && !p.has_convection)
+        return 0;
       p.assemble(t, y, nullptr, &p.tangent_matrix);
+      p.tangent_current = true;
       return 0;
     }
     int jacobian_vmult(const Vector &v, Vector &Jv) override
@@ -275,7 +281,10 @@ namespace anvil
     for (const auto &[id, m] : materials)
       linear = linear && m.conductivity_slope == 0;
     for (const auto &[id, b] : boundary_conditions.boundaries)
-      linear = linear && !b.emissivity;
+      {
+        linear         = linear && !b.emissivity;
+        has_convection = has_convection || b.h;
+      }
   }
 
   template <int dim>
@@ -337,6 +346,7 @@ namespace anvil
                  (parameters.linear_solver == "automatic" &&
                   dof_handler.n_dofs() <= parameters.direct_solver_limit);
     operators_current = false;
+    tangent_current   = false;
 
     initial_function->set_time(start_time);
     VectorTools::interpolate(get_mapping(), dof_handler, *initial_function, solution);
@@ -360,6 +370,7 @@ namespace anvil
     current_mapping = std::make_unique<MappingQEulerian<dim, Vector>>(
       mechanics_dofs.get_fe().degree, mechanics_dofs, configuration);
     operators_current = false;
+    tangent_current   = false;
   }
 
   template <int dim>
@@ -382,6 +393,7 @@ namespace anvil
       }
     linear_iterations = 0;
     mass_solves       = 0;
+    sources_current   = false; // the mechanics' sources are new every step
 
     Vector y(old_solution);
     apply_dirichlet(time_old, y);
@@ -393,6 +405,7 @@ namespace anvil
     settings.max_internal_steps       = parameters.max_internal_steps;
     settings.max_nonlinear_iterations = parameters.max_nonlinear_iterations;
     settings.initial_step_size        = last_internal_step;
+    settings.linear                   = linear;
     Ode        ode(*this);
     const auto s = thermal::integrate(ode, y, time_old, time_new, settings);
 
@@ -478,6 +491,7 @@ namespace anvil
     old_temperature_ghosted = old_solution;
     temperature_ghosted     = old_solution;
     operators_current       = false;
+    tangent_current         = false;
   }
 
   template <int dim>

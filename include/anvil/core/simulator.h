@@ -121,7 +121,8 @@ namespace anvil
     // Heat (built only if Physics/Heat is on).
     bool                                         heat = false, mechanics = true;
     std::string                                  coupling;
-    double                                       staggered_tolerance = 1e-6;
+    double                                       staggered_tolerance = 0;
+    bool                                         staggered_tolerance_noted = false;
     unsigned int                                 max_staggered_iterations = 30;
     HeatAudit                                    heat_audit;
     unsigned long                                n_thermal_nonlinear = 0, n_staggered_iterations = 0;

@@ -99,7 +99,10 @@ namespace anvil
     void setup();
 
     /// Solve for the configuration at @p time_new from the committed one at @p time_old.
-    StepResult solve_step(double time_old, double time_new);
+    /// Solve the step from the committed state; with @p from_last_solution
+    /// (the same step again, e.g. at another temperature) Newton starts from
+    /// the last solution instead of the predictor.
+    StepResult solve_step(double time_old, double time_new, bool from_last_solution = false);
 
     /// Accept the last solve: material points commit, work and reactions are accumulated.
     void commit_step();

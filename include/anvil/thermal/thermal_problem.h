@@ -278,6 +278,11 @@ namespace anvil
     dealii::SolverControl                                         direct_control;
     dealii::TrilinosWrappers::PreconditionJacobi                  mass_jacobi;
     bool   operators_current = false, use_direct = true, linear = true;
+    bool   tangent_current = false, has_convection = false; // tangent assembled for this configuration
+    bool   sources_current = false;                         // step_sources assembled for this step
+    Vector step_sources;                                    // ∫ s φ dv of the mechanics' sources
+    /// The residual of a linear problem from K and the step's sources (false: not applicable).
+    bool   linear_residual(double t, const Vector &y, Vector &rhs);
     double current_gamma = -1;
     double step_length = 1; // of the current solve_step (for ġ)
     double last_internal_step = 0;
