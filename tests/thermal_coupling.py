@@ -90,6 +90,16 @@ check(s["cut_backs"] == 0, "no cut-back (the lag is one step of %g s)" % dt)
 # The source is per current volume, which grew by (1 + (1 + nu) beta dT)^2 - 1 ~ 2.5e-5.
 close(s["heat"]["heat_content_change"], rho_c * 1.0 * 1.0, 5e-5, "heat content gained = source x volume x time")
 
+# A mechanical-only scene builds no temperature field and no ARKode object:
+# no Heat: timer, no thermal.csv, no heat section.
+import os
+out, s, _ = run("tests/homogeneous.prm", ["Boundary conditions/Displacement=left: ux = 0; bottom: uy = 0; right: ux = 0.01*t"],
+                name="thermal_coupling_mechanical_only")
+heat_timers = [k for k in s["wall_time_per_phase"] if k.startswith("Heat")]
+check(s["coupling"] == "mechanical only" and not heat_timers and "heat" not in s and "temperature_dofs" not in s
+      and not os.path.exists(out + "/thermal.csv"),
+      "mechanical only: no temperature field, no ARKode, no Heat timers (%s)" % sorted(s["wall_time_per_phase"]))
+
 # Kelvin's thermoelastic effect: an insulated bar (axisymmetric section)
 # pulled to 100 MPa uniaxial stress cools by rho c dT = -beta T dsigma
 # (c at constant stress, doc/thermodynamics.md), i.e. T = T0 exp(-beta dsigma/(rho c));
