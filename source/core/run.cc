@@ -32,9 +32,10 @@ namespace anvil
       "Exit status: 0 done, 2 bad input, 3 the simulation could not be completed.\n";
 
     template <int dim>
-    void declare(ParameterHandler &prm, const std::vector<std::string> &bodies)
+    void declare(ParameterHandler &prm, const Scene &scene)
     {
-      Simulator<dim>::declare_parameters(prm, bodies);
+      Simulator<dim>::declare_parameters(prm, scene.body_names(), scene.contact_pair_names(),
+                                         scene.contact_tool_names());
     }
 
     // Returns why the run stopped early, or "" (the Simulator is gone by then).
@@ -62,7 +63,7 @@ namespace anvil
                            const std::vector<std::pair<std::string, std::string>> &overrides,
                            const bool help, const bool print, const bool check, const bool root)
     {
-      const auto declare = [](ParameterHandler &prm, const std::vector<std::string> &) {
+      const auto declare = [](ParameterHandler &prm, const Scene &) {
         MaterialPointDriver::declare_parameters(prm);
       };
       if (help || print)

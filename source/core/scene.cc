@@ -117,6 +117,15 @@ namespace anvil
                       "(a generator's Body name, or the physical names of a gmsh file). "
                       "Each gets a subsection of its own with its material.");
     prm.leave_subsection();
+    prm.enter_subsection("Contact");
+    prm.declare_entry("Pairs", "", Patterns::List(Patterns::Anything(), 0),
+                      "Names of the contact pairs; each gets a subsection Contact/<name> with "
+                      "its Slave and Master surfaces, penalties, friction and thermal contact. "
+                      "Empty: no contact (no search, nothing built).");
+    prm.declare_entry("Tools", "", Patterns::List(Patterns::Anything(), 0),
+                      "Names of the rigid tools; each gets a subsection Contact/<name> with its "
+                      "surface, motion and temperature. A pair's Master may name a tool.");
+    prm.leave_subsection();
   }
 
   std::pair<std::string, std::string> Scene::parse_override(const std::string &text)
@@ -196,11 +205,24 @@ namespace anvil
         bodies.push_back(name);
       }
     shape.leave_subsection();
+    shape.enter_subsection("Contact");
+    pairs = Utilities::split_string_list(shape.get("Pairs"));
+    tools = Utilities::split_string_list(shape.get("Tools"));
+    shape.leave_subsection();
+    std::vector<std::string> all = bodies;
+    for (const auto *list : {&pairs, &tools})
+      for (const auto &name : *list)
+        {
+          if (std::find(all.begin(), all.end(), name) != all.end() || name == "Pairs" || name == "Tools")
+            fail(list == &pairs ? "Contact/Pairs" : "Contact/Tools",
+                 "uses the name '" + name + "' twice (pairs, tools and bodies need distinct names)");
+          all.push_back(name);
+        }
   }
 
   void Scene::read(const Declarator &declare)
   {
-    declare(prm, bodies);
+    declare(prm, *this);
     parse_file(prm, false);
     apply_overrides(prm, false);
   }

@@ -17,7 +17,9 @@ namespace anvil
 
   template <int dim>
   void Simulator<dim>::declare_parameters(ParameterHandler               &prm,
-                                          const std::vector<std::string> &body_names)
+                                          const std::vector<std::string> &body_names,
+                                          const std::vector<std::string> &contact_pair_names,
+                                          const std::vector<std::string> &contact_tool_names)
   {
     Scene::declare_shape_parameters(prm);
     prm.enter_subsection("Bodies");
@@ -68,6 +70,7 @@ namespace anvil
     ThermalProblem<dim>::Parameters::declare_parameters(prm);
 
     Geometry<dim>::declare_parameters(prm);
+    ContactProblem<dim>::declare_parameters(prm, contact_pair_names, contact_tool_names);
     MechanicalProblem<dim>::Parameters::declare_parameters(prm);
     BoundaryConditions<dim>::declare_parameters(prm);
 
@@ -180,6 +183,10 @@ namespace anvil
         prm.leave_subsection();
       }
     boundary_conditions.parse_parameters(prm, scene, geometry);
+    contact.parse_parameters(prm, scene, geometry);
+    if (!contact.empty() && !mechanics)
+      scene.fail("Contact/Pairs", "names contact pairs, but Physics/Coupling is 'thermal only': "
+                                  "contact needs the mechanics");
 
     prm.enter_subsection("Time");
     time.end_time          = prm.get_double("End time");
@@ -225,6 +232,8 @@ namespace anvil
       {
         mechanical = std::make_unique<MechanicalProblem<dim>>(triangulation, mechanics_parameters,
                                                               boundary_conditions, materials, *timer);
+        if (!contact.empty())
+          mechanical->set_contact(&contact);
         mechanical->setup();
       }
     if (heat)
@@ -436,6 +445,15 @@ namespace anvil
                       Utilities::to_string(mechanical->largest_plastic_increment(), 3) +
                       " at a point (limit " +
                       Utilities::to_string(mechanics_parameters.maximum_plastic_increment) + ")";
+        }
+      if (r.converged && !contact.empty() &&
+          contact.last_max_penetration() > contact.maximum_penetration())
+        {
+          r.converged = false;
+          r.failure   = "contact penetration " + Utilities::to_string(contact.last_max_penetration(), 3) +
+                      " mm exceeds Contact/Maximum penetration = " +
+                      Utilities::to_string(contact.maximum_penetration(), 3) +
+                      " mm (raise the penalty, or the limit)";
         }
       n_newton += r.iterations;
       n_linear += r.linear_iterations;

@@ -145,6 +145,24 @@ namespace anvil
             if (q.field[0] == 'u' && q.field.size() == 2)
               q.component = component_of(q.field.substr(1));
           }
+        else if (f == "contact" && args.size() == 2)
+          {
+            q.target = args[0];
+            q.field  = args[1];
+            const auto &pairs = contact.get_pairs();
+            if (std::none_of(pairs.begin(), pairs.end(), [&](const auto &p) { return p.name == args[0]; }))
+              scene.fail(qpath, "item '" + item + "': no contact pair named '" + args[0] +
+                                  "' in Contact/Pairs");
+            const std::vector<std::string> known = {"x", "y", "z", "normal", "tangential",
+                                                    "friction_work", "active_nodes",
+                                                    "sliding_nodes", "max_penetration"};
+            if (std::find(known.begin(), known.end(), args[1]) == known.end() ||
+                (args[1] == "z" && dim == 2))
+              scene.fail(qpath, "item '" + item + "': expected contact(pair, x|y" +
+                                  (dim == 3 ? "|z" : "") +
+                                  "|normal|tangential|friction_work|active_nodes|sliding_nodes|"
+                                  "max_penetration)");
+          }
         else if ((f == "max" || f == "min") && args.size() == 1 && is_field(args[0]))
           q.field = args[0];
         else if (f == "mean" && (args.size() == 1 || args.size() == 2) && is_field(args[0]))
@@ -214,6 +232,19 @@ namespace anvil
                       {"step", "time", "iteration", "residual", "increment", "line_search",
                        "converged"},
                       root, append);
+    if (!contact.empty())
+      {
+        columns = {"step", "time"};
+        for (const auto &p : contact.get_pairs())
+          {
+            for (unsigned int d = 0; d < dim; ++d)
+              columns.push_back(p.name + "_F" + "xyz"[d]);
+            for (const auto *c : {"_normal", "_tangential", "_friction_work", "_active_nodes",
+                                  "_sliding_nodes", "_max_penetration"})
+              columns.push_back(p.name + c);
+          }
+        contact_csv.open(output_dir + "/contact.csv", columns, root, append);
+      }
     if (thermal)
       thermal_csv.open(output_dir + "/thermal.csv",
                        {"step", "time", "time_step", "arkode_steps", "arkode_attempts",
@@ -278,6 +309,18 @@ namespace anvil
               row.push_back(thermal->temperature_at(p.point));
           }
         probes_csv.add_row(row);
+      }
+    if (!contact.empty())
+      {
+        row = {double(step), t};
+        for (const auto &c : contact.totals())
+          {
+            for (unsigned int d = 0; d < dim; ++d)
+              row.push_back(c.force[d]);
+            row.insert(row.end(), {c.normal, c.tangential, c.friction_work, double(c.active),
+                                   double(c.sliding), c.max_penetration});
+          }
+        contact_csv.add_row(row);
       }
     row = {double(step), t};
     if (mechanical)
@@ -446,6 +489,28 @@ namespace anvil
         double value = 0;
         if (q.kind == "reaction")
           value = mechanical->reaction(q.boundary)[q.component];
+        else if (q.kind == "contact")
+          {
+            const auto &pairs = contact.get_pairs();
+            const auto  k     = std::find_if(pairs.begin(), pairs.end(),
+                                        [&](const auto &p) { return p.name == q.target; }) -
+                           pairs.begin();
+            const auto &c = contact.totals()[k];
+            if (q.field.size() == 1)
+              value = c.force[q.field[0] - 'x'];
+            else if (q.field == "normal")
+              value = c.normal;
+            else if (q.field == "tangential")
+              value = c.tangential;
+            else if (q.field == "friction_work")
+              value = c.friction_work;
+            else if (q.field == "active_nodes")
+              value = c.active;
+            else if (q.field == "sliding_nodes")
+              value = c.sliding;
+            else
+              value = c.max_penetration;
+          }
         else if (q.kind == "probe")
           {
             const auto &p = *std::find_if(probes.begin(), probes.end(),
@@ -557,6 +622,15 @@ namespace anvil
         s.set("heat", "arkode_steps_per_step", n_steps ? double(n_thermal_steps) / n_steps : 0.);
         s.set("heat", "arkode_nonlinear_iterations", double(n_thermal_nonlinear));
         s.set("heat", "staggered_iterations", double(n_staggered_iterations));
+      }
+    for (unsigned int k = 0; k < contact.get_pairs().size(); ++k)
+      {
+        const auto &c = contact.totals()[k];
+        const auto &name = contact.get_pairs()[k].name;
+        s.set("contact", name + "_normal", c.normal);
+        s.set("contact", name + "_tangential", c.tangential);
+        s.set("contact", name + "_friction_work", c.friction_work);
+        s.set("contact", name + "_max_penetration", c.max_penetration);
       }
     for (const auto &[name, value] : qoi_values)
       s.set("quantities_of_interest", name, value);

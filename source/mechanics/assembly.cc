@@ -5,6 +5,7 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <anvil/mechanics/kinematics.h>
+#include <anvil/contact/contact_problem.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
 #include <chrono>
@@ -460,6 +461,39 @@ namespace anvil
           active_constraints->distribute_local_to_global(cell_rhs, dof_indices, system_rhs);
         internal_force.add(dof_indices, cell_internal);
         external_force.add(dof_indices, cell_external);
+      }
+
+    if (contact)
+      {
+        // Contact elements (seed eq. 27–29): r is an internal force.
+        const double factor   = dynamic ? 1 - alpha_f : 1.;
+        const bool   complete = contact->assemble(
+          solution, with_matrix,
+          [&](const std::vector<types::global_dof_index> &dofs, const dealii::Vector<double> &r,
+              const FullMatrix<double> *K) {
+            dealii::Vector<double> rhs(r);
+            rhs *= -factor;
+            if (with_matrix && K)
+              {
+                FullMatrix<double> matrix(*K);
+                matrix *= factor;
+                active_constraints->distribute_local_to_global(matrix, rhs, dofs, system_matrix,
+                                                               system_rhs);
+              }
+            else
+              active_constraints->distribute_local_to_global(rhs, dofs, system_rhs);
+            internal_force.add(dofs, r);
+          });
+        if (!complete)
+          {
+            // A slave met a master face outside the matrix's pattern: grow it, again.
+            if (with_matrix)
+              system_matrix.compress(VectorOperation::add);
+            for (auto *v : {&system_rhs, &internal_force, &external_force, &inertia_force})
+              v->compress(VectorOperation::add);
+            setup_matrix();
+            return assemble(with_matrix, time);
+          }
       }
 
     if (with_matrix)

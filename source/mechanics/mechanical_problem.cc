@@ -14,6 +14,7 @@
 #include <anvil/core/input_error.h>
 #include <anvil/core/scene.h>
 #include <anvil/mechanics/kinematics.h>
+#include <anvil/contact/contact_problem.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
 #include <chrono>
@@ -211,11 +212,13 @@ namespace anvil
     make_axis_constraints(constraints);
     constraints.close();
 
-    DynamicSparsityPattern dsp(locally_relevant_dofs);
-    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
-    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs, mpi_communicator,
-                                               locally_relevant_dofs);
-    system_matrix.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
+    if (contact)
+      {
+        contact->setup(dof_handler, axisymmetric);
+        TrilinosWrappers::MPI::Vector zero(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+        contact->begin_step(0, 0, zero);
+      }
+    setup_matrix();
 
     previous_time_step = 0;
     previous_increment.reinit(locally_owned_dofs, mpi_communicator);
@@ -240,6 +243,30 @@ namespace anvil
     setup_quadrature_point_data();
     if (parameters.dynamic)
       setup_dynamics();
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::setup_matrix()
+  {
+    // Contact couples dofs of different cells (a slave node with the nodes of
+    // the master face below it), possibly owned by other processes: their
+    // rows enter the pattern here and go to their owners.
+    std::vector<std::vector<types::global_dof_index>> groups;
+    IndexSet rows = locally_relevant_dofs;
+    if (contact)
+      {
+        groups = contact->couplings();
+        for (const auto &g : groups)
+          for (const auto i : g)
+            rows.add_index(i);
+        rows.compress();
+      }
+    DynamicSparsityPattern dsp(rows);
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+    for (const auto &g : groups)
+      constraints.add_entries_local_to_global(g, dsp, false);
+    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs, mpi_communicator, rows);
+    system_matrix.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
   }
 
   template <int dim>
@@ -382,6 +409,12 @@ namespace anvil
     StepResult result;
     current_time_step = time_new - time_old;
     current_time      = time_new;
+    if (contact)
+      {
+        contact->begin_step(time_old, time_new, old_solution);
+        if (contact->couplings_changed())
+          setup_matrix();
+      }
 
     // Predictor: the first Newton iteration starts from the committed
     // configuration and imposes the jump of the prescribed displacements as

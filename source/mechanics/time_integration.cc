@@ -7,6 +7,7 @@
 
 #include <anvil/core/expression.h>
 #include <anvil/core/scene.h>
+#include <anvil/contact/contact_problem.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
 #include <cmath>
@@ -172,6 +173,8 @@ namespace anvil
     energy_audit.elastic_energy = elastic_strain_energy();
 
     previous_increment = du;
+    if (contact)
+      contact->commit();
     material_temperature_old = material_temperature;
     previous_time_step = current_time_step;
     for (auto &p : points)

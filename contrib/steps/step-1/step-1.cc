@@ -51,8 +51,10 @@ int main(int argc, char **argv)
       const std::string file = argc > 1 ? argv[1] : "step-1.prm";
       anvil::Scene      scene(file, {});
       scene.read_shape();
-      scene.read([](dealii::ParameterHandler &prm, const std::vector<std::string> &bodies) {
-        anvil::Simulator<2>::declare_parameters(prm, bodies);
+      scene.read([](dealii::ParameterHandler &prm, const anvil::Scene &scene) {
+        anvil::Simulator<2>::declare_parameters(prm, scene.body_names(),
+                                                scene.contact_pair_names(),
+                                                scene.contact_tool_names());
       });
 
       anvil::Simulator<2> simulator(scene, MPI_COMM_WORLD);

@@ -25,8 +25,7 @@ namespace anvil
   {
   public:
     /// A function that declares all parameters given the body names.
-    using Declarator =
-      std::function<void(dealii::ParameterHandler &, const std::vector<std::string> &)>;
+    using Declarator = std::function<void(dealii::ParameterHandler &, const Scene &)>;
 
     Scene(const std::string                                        &filename,
           const std::vector<std::pair<std::string, std::string>> &overrides);
@@ -34,7 +33,7 @@ namespace anvil
     /// An empty scene (only defaults and overrides), e.g. for --print-parameters.
     Scene();
 
-    /// Pass one: dimension and body names.
+    /// Pass one: dimension, body names, contact pair and tool names.
     void read_shape();
 
     /// Pass two: declare with @p declare and parse strictly.
@@ -42,6 +41,9 @@ namespace anvil
 
     unsigned int                    dimension() const { return dim; }
     const std::vector<std::string> &body_names() const { return bodies; }
+    /// Names in Contact/Pairs and Contact/Tools (each gets a subsection).
+    const std::vector<std::string> &contact_pair_names() const { return pairs; }
+    const std::vector<std::string> &contact_tool_names() const { return tools; }
     const std::string              &filename() const { return file; }
     dealii::ParameterHandler       &parameters() { return prm; }
 
@@ -59,7 +61,7 @@ namespace anvil
     /// Parse `Section/Sub/Entry=value` into (path, value); throws InputError.
     static std::pair<std::string, std::string> parse_override(const std::string &text);
 
-    /// Declare the entries read in pass one (Dimension, Bodies/Names).
+    /// Declare the entries read in pass one (Dimension, Bodies/Names, Contact/Pairs, Contact/Tools).
     static void declare_shape_parameters(dealii::ParameterHandler &prm);
 
   private:
@@ -70,7 +72,7 @@ namespace anvil
     std::vector<std::pair<std::string, std::string>> overrides;
     dealii::ParameterHandler                           prm;
     unsigned int                                       dim = 2;
-    std::vector<std::string>                           bodies;
+    std::vector<std::string>                           bodies, pairs, tools;
   };
 
   /// Split "a, b(c, d); e" at @p separator outside parentheses, trimming blanks.

@@ -5,6 +5,7 @@
 #include <deal.II/base/timer.h>
 #include <deal.II/distributed/tria.h>
 
+#include <anvil/contact/contact_problem.h>
 #include <anvil/core/scene.h>
 #include <anvil/geometry/geometry.h>
 #include <anvil/mechanics/boundary_conditions.h>
@@ -29,7 +30,9 @@ namespace anvil
   public:
     /// Every parameter of a scene of this dimension with these bodies.
     static void declare_parameters(dealii::ParameterHandler       &prm,
-                                   const std::vector<std::string> &body_names);
+                                   const std::vector<std::string> &body_names,
+                                   const std::vector<std::string> &contact_pair_names = {},
+                                   const std::vector<std::string> &contact_tool_names = {});
 
     /// Parse the scene and check it against the mesh; throws InputError.
     Simulator(Scene &scene, MPI_Comm communicator);
@@ -118,6 +121,7 @@ namespace anvil
     typename MechanicalProblem<dim>::Parameters  mechanics_parameters;
     std::map<dealii::types::material_id, std::shared_ptr<const MaterialModel>> materials;
     std::unique_ptr<MechanicalProblem<dim>>      mechanical;
+    ContactProblem<dim>                          contact; // empty unless Contact/Pairs names some
     // Heat (built only if Physics/Heat is on).
     bool                                         heat = false, mechanics = true;
     std::string                                  coupling;
@@ -149,7 +153,7 @@ namespace anvil
     std::vector<Quantity> quantities;
     std::vector<std::pair<std::string, double>> qoi_values;
     std::vector<std::pair<double, std::string>> pvd_records;
-    CsvHistory reactions_csv, probes_csv, energy_csv, newton_csv, thermal_csv;
+    CsvHistory reactions_csv, probes_csv, energy_csv, newton_csv, thermal_csv, contact_csv;
     std::vector<std::pair<std::string, dealii::types::boundary_id>> reaction_boundaries;
 
     unsigned int n_steps = 0, n_cut_backs = 0, n_newton = 0, n_linear = 0;

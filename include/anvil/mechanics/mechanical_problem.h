@@ -24,6 +24,9 @@
 
 namespace anvil
 {
+  template <int dim>
+  class ContactProblem;
+
   class Scene;
 
   /**
@@ -108,6 +111,9 @@ namespace anvil
     void commit_step();
     /// Forget the last solve (time step cut back).
     void revert_step();
+
+    /// Contact pairs to assemble with the bodies (null: none). Set before setup().
+    void set_contact(ContactProblem<dim> *c) { contact = c; }
 
     dealii::types::global_dof_index n_dofs() const { return dof_handler.n_dofs(); }
     const dealii::DoFHandler<dim>   &get_dof_handler() const { return dof_handler; }
@@ -256,6 +262,9 @@ namespace anvil
     // One material point per quadrature point of each locally owned cell,
     // indexed by active_cell_index * n_q_points + q.
     std::vector<std::unique_ptr<MaterialPoint>> points;
+    ContactProblem<dim>                        *contact = nullptr;
+    /// The matrix and its sparsity: the cells' couplings and the contact's.
+    void setup_matrix();
     std::vector<double>                         heat_sources; // per point, last assembly
     std::vector<double>                         thermoelastic_sources;
     TemperatureField                            temperature_field;

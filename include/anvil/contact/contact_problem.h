@@ -1,0 +1,204 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+#include <deal.II/lac/vector.h>
+
+#include <anvil/contact/contact_element.h>
+#include <anvil/contact/rigid_tool.h>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace anvil
+{
+  class Scene;
+  template <int dim>
+  class Geometry;
+
+  /**
+   * The contact pairs of a scene (seed §3): node-to-segment (2D) or
+   * node-to-facet (3D) penalty contact with Coulomb friction between named
+   * boundaries, or between a named boundary and a rigid tool.
+   *
+   *   subsection Contact
+   *     set Pairs = sliding
+   *     set Tools = floor
+   *     subsection sliding
+   *       set Slave  = upper_bottom      # a boundary: its nodes are the slaves
+   *       set Master = lower_top         # a boundary (its faces) or a tool
+   *       set Penalty normal = 1e3       # c_N, N/mm (per node) or N/mm^3 (per area)
+   *       ...
+   *     end
+   *     subsection floor
+   *       set Type = plane ...           # RigidTool
+   *     end
+   *   end
+   *
+   * Parallel: the surfaces' topology (nodes with their displacement dofs and
+   * reference positions, faces) is gathered on every process once; at every
+   * evaluation the current and old displacements of the surface nodes are
+   * summed over the processes, and each process evaluates the slave nodes
+   * whose dofs it owns. Node numbers follow the reference coordinates, so
+   * they do not depend on the partition (checkpoints may change it).
+   *
+   * Search: per pair, an R-tree of the master faces' bounding boxes (current
+   * configuration); a slave node is tested against the faces whose box,
+   * enlarged by half the largest face, contains it: O(n log n).
+   *
+   * Linearization: the elements' exact tangents (contact_element.h); the
+   * tributary area of a per-area penalty is taken at the start of the step
+   * (held over the step), so the tangent stays exact.
+   */
+  template <int dim>
+  class ContactProblem
+  {
+  public:
+    using Vector = dealii::TrilinosWrappers::MPI::Vector;
+
+    struct Pair
+    {
+      std::string                name;
+      std::string                slave_name, master_name;
+      dealii::types::boundary_id slave  = dealii::numbers::invalid_boundary_id;
+      dealii::types::boundary_id master = dealii::numbers::invalid_boundary_id;
+      int                        tool   = -1; // index into tools, or -1
+      bool                       two_pass = false;
+      bool                       per_area = false;
+      contact::FrictionLaw       law;
+      // Thermal contact (eq. 30–34).
+      double conductance = 0, hardness = 1, exponent = 1, slave_share = 0.5;
+    };
+
+    /// The totals of one pair over the committed steps (or at the last commit).
+    struct PairTotals
+    {
+      dealii::Tensor<1, dim> force;                 // total contact force on the slave side, N (last commit)
+      double                 normal = 0, tangential = 0; // sums of t_N and |t_T| over the nodes, N
+      double                 friction_work   = 0;            // accumulated, N mm
+      double                 max_penetration = 0;            // at the last commit, mm
+      unsigned int           active = 0, sliding = 0;        // nodes at the last commit
+    };
+
+    /// What an element adds: its dofs, r (internal-force convention) and dr/du.
+    using Adder = std::function<void(const std::vector<dealii::types::global_dof_index> &,
+                                     const dealii::Vector<double> &,
+                                     const dealii::FullMatrix<double> *)>;
+
+    /// Declares Contact/<pair> and Contact/<tool> for the names of pass one.
+    static void declare_parameters(dealii::ParameterHandler       &prm,
+                                   const std::vector<std::string> &pair_names,
+                                   const std::vector<std::string> &tool_names);
+    /// Reads them; boundary names resolve through @p geometry.
+    void parse_parameters(dealii::ParameterHandler &prm, const Scene &scene,
+                          const Geometry<dim> &geometry);
+
+    bool empty() const { return pairs.empty(); }
+    const std::vector<Pair> &get_pairs() const { return pairs; }
+
+    /// Gather the surfaces (collective). @p axisymmetric: areas carry 2πr.
+    void setup(const dealii::DoFHandler<dim> &dof_handler, bool axisymmetric);
+
+    /// The step [t_old, t_new] about to be solved; @p u_old the committed displacement.
+    void begin_step(double t_old, double t_new, const Vector &u_old_ghosted);
+
+    /**
+     * Evaluate every slave node this process owns at the displacement @p u
+     * (ghosted) and pass each active element to @p add. Returns false
+     * (on every process) if an element coupled dofs that are not yet in the
+     * matrix's sparsity: call couplings() and rebuild, then assemble again.
+     */
+    bool assemble(const Vector &u_ghosted, bool with_matrix, const Adder &add);
+
+    /**
+     * Dof groups that may couple in this step (each group all-to-all), for
+     * the matrix sparsity: the candidates of the search, enlarged. Rigid
+     * tools add nothing (a node couples only with itself).
+     */
+    std::vector<std::vector<dealii::types::global_dof_index>> couplings() const;
+    /// Whether couplings() grew since the last call to it (collective).
+    bool couplings_changed() const;
+
+    /// Accept the last assemble() (histories, work); collective.
+    void commit();
+    /// Largest penetration of the last assemble() (mm, all processes).
+    double last_max_penetration() const { return trial_max_penetration; }
+    /// Contact/Maximum penetration (mm), resolved at setup.
+    double maximum_penetration() const { return penetration_limit; }
+
+    const std::vector<PairTotals> &totals() const { return pair_totals; }
+
+    /// Per-node results of the last commit, for output: slave node position
+    /// (reference), pressure-like t_N/area, gap, slip, status (0 open, 1 stick, 2 slip).
+    struct NodeOutput
+    {
+      dealii::Point<dim> reference;
+      double             normal_force = 0, gap = 0, slip = 0, area = 0;
+      int                status       = 0;
+    };
+    std::vector<NodeOutput> node_outputs() const;
+
+  private:
+    struct Face
+    {
+      std::vector<unsigned int>  nodes; // ordered: the normal points out of the body
+      dealii::types::boundary_id boundary;
+    };
+    struct Surface // one boundary's faces and nodes
+    {
+      std::vector<unsigned int> faces, nodes;
+    };
+    /// Node states keyed by (pair, pass, node).
+    using Key = std::tuple<unsigned int, unsigned int, unsigned int>;
+    struct Trial
+    {
+      contact::NodeState<dim> state;
+      double normal_force = 0, tangential_force = 0, gap = 0, slip = 0, work = 0, area = 0;
+      dealii::Tensor<1, dim>  force_on_slave; // normal + tangential, N
+    };
+
+    void   gather_positions(const Vector &u_ghosted, std::vector<dealii::Point<dim>> &x) const;
+    double tributary_area(unsigned int node, const Surface &surface,
+                          const std::vector<dealii::Point<dim>> &x) const;
+    /// Candidate master faces of @p node, from an R-tree search, enlarged by @p margin.
+    void   candidate_faces(const Surface &master, const std::vector<dealii::Point<dim>> &x,
+                           double margin, const std::vector<unsigned int> &slaves,
+                           std::map<unsigned int, std::vector<unsigned int>> &candidates) const;
+
+    MPI_Comm                            mpi_communicator = MPI_COMM_WORLD;
+    std::vector<Pair>                   pairs;
+    std::vector<std::unique_ptr<RigidTool<dim>>> tools;
+    bool                                axisymmetric = false;
+    double                              penetration_limit = 0;
+
+    // Gathered topology.
+    std::vector<dealii::Point<dim>>                              node_reference;
+    std::vector<std::array<dealii::types::global_dof_index, dim>> node_dofs;
+    std::vector<bool>                                            node_owned; // x dof locally owned
+    std::vector<Face>                                            faces;
+    std::map<dealii::types::boundary_id, Surface>                surfaces;
+    double                                                       largest_face = 0;
+
+    // The step.
+    double                          t_old = 0, t_new = 0;
+    std::vector<dealii::Point<dim>> x_old;
+    std::map<Key, double>           areas; // tributary areas at t_n
+
+    // Histories and trials.
+    std::map<Key, contact::NodeState<dim>> committed, trial_states;
+    std::map<Key, Trial>                   trials;
+    double                                 trial_max_penetration = 0;
+    std::vector<PairTotals>                pair_totals;
+
+    // Sparsity bookkeeping: allowed (pair, pass, slave node, face) couplings.
+    mutable std::set<std::tuple<unsigned int, unsigned int, unsigned int, unsigned int>> allowed;
+    mutable std::set<std::tuple<unsigned int, unsigned int, unsigned int, unsigned int>> requested;
+    mutable bool grew = false;
+  };
+} // namespace anvil

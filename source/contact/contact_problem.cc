@@ -1,0 +1,563 @@
+// ContactProblem: contact pairs from the scene, the gathered surfaces, the
+// search and the assembly of the node-to-segment / node-to-tool elements into
+// the mechanics (seed §3.1, eq. 27–29).
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/numerics/rtree.h>
+
+#include <anvil/contact/contact_problem.h>
+#include <anvil/core/input_error.h>
+#include <anvil/core/scene.h>
+#include <anvil/geometry/geometry.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  template <int dim>
+  void ContactProblem<dim>::declare_parameters(ParameterHandler               &prm,
+                                               const std::vector<std::string> &pair_names,
+                                               const std::vector<std::string> &tool_names)
+  {
+    prm.enter_subsection("Contact");
+    prm.declare_entry("Maximum penetration", "0", Patterns::Double(0),
+                      "A converged step whose largest penetration exceeds this (mm) is cut back "
+                      "and reported; 0: half the shortest edge of the contact surfaces.");
+    for (const auto &name : pair_names)
+      {
+        prm.enter_subsection(name);
+        prm.declare_entry("Slave", "", Patterns::Anything(),
+                          "The boundary whose nodes are the slaves (a boundary name).");
+        prm.declare_entry("Master", "", Patterns::Anything(),
+                          "The boundary whose faces are the masters, or the name of a rigid tool "
+                          "in Contact/Tools.");
+        prm.declare_entry("Two-pass", "false", Patterns::Bool(),
+                          "Both surfaces act as slave and master (the seed's two-pass approach), "
+                          "each pass with half the penalties; false: one pass, Slave nodes on "
+                          "Master faces. Not for a tool.");
+        prm.declare_entry("Penalty normal", "0", Patterns::Double(0),
+                          "c_N of t_N = c_N <-g_N> (eq. 27): N/mm per node, or N/mm^3 per unit "
+                          "area (Penalty per = area). Must be > 0.");
+        prm.declare_entry("Penalty tangent", "0", Patterns::Double(0),
+                          "c_T of the elastic slip (eq. 28), same units as Penalty normal; "
+                          "0: frictionless.");
+        prm.declare_entry("Penalty per", "node", Patterns::Selection("node|area"),
+                          "node: the penalties are nodal stiffnesses (the seed's choice); area: "
+                          "per unit area, scaled by each slave node's tributary area at the start "
+                          "of the step (mesh independent).");
+        prm.declare_entry("Friction coefficient", "0", Patterns::Double(0),
+                          "Static Coulomb coefficient mu_s (eq. 29): sticking while "
+                          "|t_T| <= mu_s t_N.");
+        prm.declare_entry("Dynamic friction coefficient", "-1", Patterns::Double(-1),
+                          "mu_d <= mu_s, the force while sliding is mu_d t_N; -1: equal to the "
+                          "static one.");
+        prm.enter_subsection("Thermal");
+        prm.declare_entry("Conductance", "0", Patterns::Double(0),
+                          "h0 of h = h0 (p/H)^e (eq. 34), mW/(mm^2 K); 0: no heat exchange.");
+        prm.declare_entry("Hardness", "1000", Patterns::Double(0),
+                          "Vickers hardness H of eq. 34, MPa.");
+        prm.declare_entry("Exponent", "1", Patterns::Double(0), "e of eq. 34.");
+        prm.declare_entry("Relative effusivity", "0.5", Patterns::Double(0, 1),
+                          "Share of the frictional heat that goes to the slave side (eq. 31-33), "
+                          "0 to 1.");
+        prm.leave_subsection();
+        prm.leave_subsection();
+      }
+    for (const auto &name : tool_names)
+      {
+        prm.enter_subsection(name);
+        RigidTool<dim>::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  void ContactProblem<dim>::parse_parameters(ParameterHandler &prm, const Scene &scene,
+                                             const Geometry<dim> &geometry)
+  {
+    pairs.clear();
+    tools.clear();
+    prm.enter_subsection("Contact");
+    penetration_limit = prm.get_double("Maximum penetration");
+    for (const auto &name : scene.contact_tool_names())
+      {
+        prm.enter_subsection(name);
+        tools.push_back(std::make_unique<RigidTool<dim>>());
+        tools.back()->parse_parameters(prm, scene, "Contact/" + name);
+        tools.back()->name = name;
+        prm.leave_subsection();
+      }
+    for (const auto &name : scene.contact_pair_names())
+      {
+        const std::string path = "Contact/" + name + "/";
+        prm.enter_subsection(name);
+        Pair p;
+        p.name        = name;
+        p.slave_name  = trim(prm.get("Slave"));
+        p.master_name = trim(prm.get("Master"));
+        if (p.slave_name.empty())
+          scene.fail(path + "Slave", "is empty: expected the name of a boundary (" +
+                                       geometry.list_boundary_names() + ")");
+        p.slave = geometry.boundary_id(p.slave_name, scene.where(path + "Slave"));
+        for (unsigned int k = 0; k < tools.size(); ++k)
+          if (tools[k]->name == p.master_name)
+            p.tool = k;
+        if (p.tool < 0)
+          {
+            if (p.master_name.empty())
+              scene.fail(path + "Master", "is empty: expected a boundary (" +
+                                            geometry.list_boundary_names() +
+                                            ") or a tool of Contact/Tools");
+            if (geometry.boundary_names().count(p.master_name) == 0)
+              scene.fail(path + "Master",
+                         "= '" + p.master_name + "' is neither a boundary (" +
+                           geometry.list_boundary_names() + ") nor a tool of Contact/Tools");
+            p.master = geometry.boundary_id(p.master_name, scene.where(path + "Master"));
+            if (p.master == p.slave)
+              scene.fail(path + "Master", "is the Slave boundary: self-contact is not supported");
+          }
+        p.two_pass = prm.get_bool("Two-pass");
+        if (p.two_pass && p.tool >= 0)
+          scene.fail(path + "Two-pass", "is true but the Master is a rigid tool (a tool has no nodes)");
+        p.per_area                = prm.get("Penalty per") == "area";
+        p.law.penalty_normal      = prm.get_double("Penalty normal");
+        p.law.penalty_tangent     = prm.get_double("Penalty tangent");
+        p.law.mu_static           = prm.get_double("Friction coefficient");
+        const double mu_d         = prm.get_double("Dynamic friction coefficient");
+        p.law.mu_dynamic          = mu_d < 0 ? p.law.mu_static : mu_d;
+        if (!(p.law.penalty_normal > 0))
+          scene.fail(path + "Penalty normal", "must be > 0 (N/mm per node, N/mm^3 per area)");
+        if (p.law.mu_static > 0 && !(p.law.penalty_tangent > 0))
+          scene.fail(path + "Penalty tangent",
+                     "must be > 0 when there is friction (Friction coefficient > 0)");
+        if (p.law.mu_dynamic > p.law.mu_static)
+          scene.fail(path + "Dynamic friction coefficient",
+                     "must not exceed the static Friction coefficient");
+        prm.enter_subsection("Thermal");
+        p.conductance = prm.get_double("Conductance");
+        p.hardness    = prm.get_double("Hardness");
+        p.exponent    = prm.get_double("Exponent");
+        p.slave_share = prm.get_double("Relative effusivity");
+        prm.leave_subsection();
+        if (!(p.hardness > 0))
+          scene.fail(path + "Thermal/Hardness", "must be > 0 MPa");
+        prm.leave_subsection();
+        pairs.push_back(p);
+      }
+    prm.leave_subsection();
+    pair_totals.assign(pairs.size(), PairTotals());
+  }
+
+  template <int dim>
+  void ContactProblem<dim>::setup(const DoFHandler<dim> &dof_handler, const bool axi)
+  {
+    axisymmetric     = axi;
+    mpi_communicator = dof_handler.get_communicator();
+    std::set<types::boundary_id> wanted;
+    for (const auto &p : pairs)
+      {
+        wanted.insert(p.slave);
+        if (p.tool < 0)
+          wanted.insert(p.master);
+      }
+
+    // Local faces: boundary, then per vertex its dim dofs and reference position.
+    const unsigned int  n_vertices = GeometryInfo<dim>::vertices_per_face;
+    std::vector<double> local;
+    const IndexSet     &owned = dof_handler.locally_owned_dofs();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary() && wanted.count(cell->face(f)->boundary_id()))
+            {
+              std::vector<unsigned int> order(n_vertices);
+              std::iota(order.begin(), order.end(), 0);
+              if (!contact::face_order_gives_outward_normal<dim>(f))
+                {
+                  if (dim == 2)
+                    std::swap(order[0], order[1]);
+                  else
+                    std::swap(order[1], order[2]);
+                }
+              local.push_back(cell->face(f)->boundary_id());
+              for (const unsigned int k : order)
+                {
+                  const unsigned int v = GeometryInfo<dim>::face_to_cell_vertices(f, k);
+                  for (unsigned int c = 0; c < dim; ++c)
+                    local.push_back(cell->vertex_dof_index(v, c));
+                  for (unsigned int c = 0; c < dim; ++c)
+                    local.push_back(cell->vertex(v)[c]);
+                }
+            }
+    const auto all = Utilities::MPI::all_gather(mpi_communicator, local);
+
+    // Nodes by their x dof, then numbered in the order of their reference
+    // coordinates (independent of the partition).
+    struct RawNode
+    {
+      std::array<types::global_dof_index, dim> dofs;
+      Point<dim>                               X;
+    };
+    std::map<types::global_dof_index, RawNode>                    raw;
+    std::vector<std::pair<types::boundary_id, std::vector<types::global_dof_index>>> raw_faces;
+    const unsigned int stride = 1 + n_vertices * 2 * dim;
+    for (const auto &part : all)
+      for (std::size_t i = 0; i + stride <= part.size(); i += stride)
+        {
+          std::vector<types::global_dof_index> keys;
+          for (unsigned int k = 0; k < n_vertices; ++k)
+            {
+              RawNode n;
+              for (unsigned int c = 0; c < dim; ++c)
+                {
+                  n.dofs[c] = static_cast<types::global_dof_index>(part[i + 1 + k * 2 * dim + c]);
+                  n.X[c]    = part[i + 1 + k * 2 * dim + dim + c];
+                }
+              raw[n.dofs[0]] = n;
+              keys.push_back(n.dofs[0]);
+            }
+          raw_faces.emplace_back(static_cast<types::boundary_id>(part[i]), keys);
+        }
+    std::vector<types::global_dof_index> sorted;
+    for (const auto &[key, n] : raw)
+      sorted.push_back(key);
+    std::sort(sorted.begin(), sorted.end(), [&](const auto a, const auto b) {
+      const Point<dim> &A = raw[a].X, &B = raw[b].X;
+      for (unsigned int c = 0; c < dim; ++c)
+        if (A[c] != B[c])
+          return A[c] < B[c];
+      return a < b;
+    });
+    std::map<types::global_dof_index, unsigned int> number;
+    node_reference.clear();
+    node_dofs.clear();
+    node_owned.clear();
+    for (const auto key : sorted)
+      {
+        number[key] = node_reference.size();
+        node_reference.push_back(raw[key].X);
+        node_dofs.push_back(raw[key].dofs);
+        node_owned.push_back(owned.is_element(raw[key].dofs[0]));
+      }
+    faces.clear();
+    surfaces.clear();
+    largest_face = 0;
+    double shortest = std::numeric_limits<double>::max();
+    for (const auto &[b, keys] : raw_faces)
+      {
+        Face face;
+        face.boundary = b;
+        for (const auto k : keys)
+          face.nodes.push_back(number[k]);
+        surfaces[b].faces.push_back(faces.size());
+        for (const auto n : face.nodes)
+          surfaces[b].nodes.push_back(n);
+        for (unsigned int a = 0; a < face.nodes.size(); ++a)
+          for (unsigned int c = a + 1; c < face.nodes.size(); ++c)
+            {
+              const double d = node_reference[face.nodes[a]].distance(node_reference[face.nodes[c]]);
+              largest_face   = std::max(largest_face, d);
+              shortest       = std::min(shortest, d);
+            }
+        faces.push_back(face);
+      }
+    for (auto &[b, s] : surfaces)
+      {
+        std::sort(s.nodes.begin(), s.nodes.end());
+        s.nodes.erase(std::unique(s.nodes.begin(), s.nodes.end()), s.nodes.end());
+      }
+    if (penetration_limit == 0)
+      penetration_limit = faces.empty() ? std::numeric_limits<double>::max() : 0.5 * shortest;
+    committed.clear();
+    trials.clear();
+    allowed.clear();
+    requested.clear();
+    grew = true;
+  }
+
+  template <int dim>
+  void ContactProblem<dim>::gather_positions(const Vector &u, std::vector<Point<dim>> &x) const
+  {
+    std::vector<double> values(node_reference.size() * dim, 0.);
+    const IndexSet     &owned = u.locally_owned_elements();
+    for (unsigned int n = 0; n < node_reference.size(); ++n)
+      for (unsigned int c = 0; c < dim; ++c)
+        if (owned.is_element(node_dofs[n][c]))
+          values[n * dim + c] = u(node_dofs[n][c]);
+    Utilities::MPI::sum(values, mpi_communicator, values);
+    x.resize(node_reference.size());
+    for (unsigned int n = 0; n < node_reference.size(); ++n)
+      for (unsigned int c = 0; c < dim; ++c)
+        x[n][c] = node_reference[n][c] + values[n * dim + c];
+  }
+
+  template <int dim>
+  double ContactProblem<dim>::tributary_area(const unsigned int node, const Surface &surface,
+                                             const std::vector<Point<dim>> &x) const
+  {
+    // 2D: half of each adjacent segment (times 2πr when axisymmetric);
+    // 3D: a quarter of each adjacent facet (diagonals' cross product / 2).
+    double area = 0;
+    for (const auto f : surface.faces)
+      {
+        const auto &nodes = faces[f].nodes;
+        if (std::find(nodes.begin(), nodes.end(), node) == nodes.end())
+          continue;
+        if constexpr (dim == 2)
+          area += 0.5 * x[nodes[0]].distance(x[nodes[1]]);
+        else
+          {
+            const Tensor<1, dim> d1 = x[nodes[3]] - x[nodes[0]], d2 = x[nodes[2]] - x[nodes[1]];
+            area += 0.25 * 0.5 * cross_product_3d(d1, d2).norm();
+          }
+      }
+    if (axisymmetric)
+      area *= 2 * numbers::PI * x[node][0];
+    return area;
+  }
+
+  template <int dim>
+  void ContactProblem<dim>::candidate_faces(
+    const Surface &master, const std::vector<Point<dim>> &x, const double margin,
+    const std::vector<unsigned int> &slaves,
+    std::map<unsigned int, std::vector<unsigned int>> &candidates) const
+  {
+    namespace bgi = boost::geometry::index;
+    std::vector<std::pair<BoundingBox<dim>, unsigned int>> boxes;
+    boxes.reserve(master.faces.size());
+    for (const auto f : master.faces)
+      {
+        std::vector<Point<dim>> corners;
+        for (const auto n : faces[f].nodes)
+          corners.push_back(x[n]);
+        BoundingBox<dim> box(corners);
+        box.extend(margin);
+        boxes.emplace_back(box, f);
+      }
+    const auto tree = pack_rtree(boxes);
+    for (const auto s : slaves)
+      {
+        std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
+        tree.query(bgi::intersects(x[s]), std::back_inserter(hits));
+        auto &list = candidates[s];
+        for (const auto &h : hits)
+          list.push_back(h.second);
+        std::sort(list.begin(), list.end());
+      }
+  }
+
+  template <int dim>
+  void ContactProblem<dim>::begin_step(const double t0, const double t1, const Vector &u_old)
+  {
+    t_old = t0;
+    t_new = t1;
+    gather_positions(u_old, x_old);
+    areas.clear();
+    trials.clear();
+    for (unsigned int p = 0; p < pairs.size(); ++p)
+      for (unsigned int pass = 0; pass < (pairs[p].two_pass ? 2u : 1u); ++pass)
+        {
+          const auto slave_id  = pass == 0 ? pairs[p].slave : pairs[p].master;
+          const auto master_id = pass == 0 ? pairs[p].master : pairs[p].slave;
+          const Surface &slave = surfaces[slave_id];
+          std::vector<unsigned int> mine;
+          for (const auto n : slave.nodes)
+            if (node_owned[n])
+              {
+                mine.push_back(n);
+                areas[Key(p, pass, n)] = tributary_area(n, slave, x_old);
+              }
+          if (pairs[p].tool >= 0)
+            continue;
+          // Couplings that may occur in this step: a generous search.
+          std::map<unsigned int, std::vector<unsigned int>> candidates;
+          candidate_faces(surfaces[master_id], x_old, 1.5 * largest_face, mine, candidates);
+          for (const auto &[n, list] : candidates)
+            for (const auto f : list)
+              if (allowed.insert({p, pass, n, f}).second)
+                grew = true;
+        }
+  }
+
+  template <int dim>
+  bool ContactProblem<dim>::couplings_changed() const
+  {
+    return Utilities::MPI::max(grew ? 1 : 0, mpi_communicator) > 0;
+  }
+
+  template <int dim>
+  std::vector<std::vector<types::global_dof_index>> ContactProblem<dim>::couplings() const
+  {
+    std::vector<std::vector<types::global_dof_index>> groups;
+    for (const auto &[p, pass, n, f] : allowed)
+      {
+        std::vector<types::global_dof_index> dofs(node_dofs[n].begin(), node_dofs[n].end());
+        for (const auto m : faces[f].nodes)
+          dofs.insert(dofs.end(), node_dofs[m].begin(), node_dofs[m].end());
+        groups.push_back(dofs);
+      }
+    grew = false;
+    return groups;
+  }
+
+  template <int dim>
+  bool ContactProblem<dim>::assemble(const Vector &u, const bool with_matrix, const Adder &add)
+  {
+    std::vector<Point<dim>> x;
+    gather_positions(u, x);
+    bool   missing     = false;
+    double penetration = 0;
+    trials.clear();
+    for (unsigned int p = 0; p < pairs.size(); ++p)
+      {
+        const Pair &pair = pairs[p];
+        for (unsigned int pass = 0; pass < (pair.two_pass ? 2u : 1u); ++pass)
+          {
+            const auto     slave_id  = pass == 0 ? pair.slave : pair.master;
+            const auto     master_id = pass == 0 ? pair.master : pair.slave;
+            const Surface &slave     = surfaces[slave_id];
+            std::vector<unsigned int> mine;
+            for (const auto n : slave.nodes)
+              if (node_owned[n])
+                mine.push_back(n);
+            std::map<unsigned int, std::vector<unsigned int>> candidates;
+            if (pair.tool < 0)
+              candidate_faces(surfaces[master_id], x, 0.5 * largest_face, mine, candidates);
+
+            for (const auto n : mine)
+              {
+                const Key  key{p, pass, n};
+                const auto c     = committed.find(key);
+                const auto state = c == committed.end() ? contact::NodeState<dim>() : c->second;
+                contact::FrictionLaw law = pair.law;
+                const double scale = (pair.per_area ? areas[key] : 1.) * (pair.two_pass ? 0.5 : 1.);
+                law.penalty_normal *= scale;
+                law.penalty_tangent *= scale;
+
+                contact::ContactResult<dim>          result;
+                std::vector<types::global_dof_index> dofs(node_dofs[n].begin(), node_dofs[n].end());
+                if (pair.tool >= 0)
+                  result = contact::node_to_tool(x[n], x_old[n], *tools[pair.tool], t_new, t_old,
+                                                 state, law, with_matrix);
+                else
+                  {
+                    // The closest master face the node projects into.
+                    int best_face = -1;
+                    for (const auto f : candidates[n])
+                      {
+                        std::vector<Point<dim>> xm, xm_old;
+                        for (const auto m : faces[f].nodes)
+                          {
+                            xm.push_back(x[m]);
+                            xm_old.push_back(x_old[m]);
+                          }
+                        auto r = contact::node_to_segment(x[n], x_old[n], xm, xm_old, state, law,
+                                                          with_matrix);
+                        if (!r.projection_inside)
+                          continue;
+                        if (best_face < 0 || std::abs(r.gap) < std::abs(result.gap))
+                          {
+                            result    = std::move(r);
+                            best_face = f;
+                          }
+                      }
+                    if (best_face >= 0 && result.in_contact)
+                      {
+                        if (!allowed.count({p, pass, n, unsigned(best_face)}))
+                          {
+                            allowed.insert({p, pass, n, unsigned(best_face)});
+                            grew    = true;
+                            missing = true;
+                          }
+                        for (const auto m : faces[best_face].nodes)
+                          dofs.insert(dofs.end(), node_dofs[m].begin(), node_dofs[m].end());
+                      }
+                  }
+                Trial &trial = trials[key];
+                trial.state  = result.new_state;
+                trial.area   = areas[key];
+                if (!result.in_contact)
+                  continue;
+                penetration        = std::max(penetration, -result.gap);
+                trial.normal_force = result.normal_force;
+                trial.gap          = result.gap;
+                trial.slip         = result.slip_increment.norm();
+                trial.work         = result.frictional_work;
+                trial.tangential_force = result.tangential_force.norm();
+                trial.force_on_slave = result.normal_force * result.normal - result.tangential_force;
+                if (!missing)
+                  add(dofs, result.residual, with_matrix ? &result.tangent : nullptr);
+              }
+          }
+      }
+    trial_max_penetration = Utilities::MPI::max(penetration, mpi_communicator);
+    return Utilities::MPI::max(missing ? 1 : 0, mpi_communicator) == 0;
+  }
+
+  template <int dim>
+  void ContactProblem<dim>::commit()
+  {
+    constexpr unsigned int w = dim + 5; // force (dim), t_N, |t_T|, work, active, sliding
+    std::vector<double> sums(pairs.size() * w, 0.), maxima(pairs.size(), 0.);
+    for (const auto &[key, trial] : trials)
+      {
+        const unsigned int p = std::get<0>(key);
+        committed[key]       = trial.state;
+        double *s            = &sums[p * w];
+        if (trial.normal_force > 0)
+          {
+            for (unsigned int d = 0; d < dim; ++d)
+              s[d] += trial.force_on_slave[d];
+            s[dim] += trial.normal_force;
+            s[dim + 1] += trial.tangential_force;
+            s[dim + 2] += trial.work;
+            s[dim + 3] += 1;
+            s[dim + 4] += trial.state.sliding ? 1 : 0;
+            maxima[p] = std::max(maxima[p], -trial.gap);
+          }
+      }
+    Utilities::MPI::sum(sums, mpi_communicator, sums);
+    Utilities::MPI::max(maxima, mpi_communicator, maxima);
+    for (unsigned int p = 0; p < pairs.size(); ++p)
+      {
+        const double *s = &sums[p * w];
+        auto         &t = pair_totals[p];
+        for (unsigned int d = 0; d < dim; ++d)
+          t.force[d] = s[d];
+        t.normal     = s[dim];
+        t.tangential = s[dim + 1];
+        t.friction_work += s[dim + 2];
+        t.active          = static_cast<unsigned int>(s[dim + 3] + 0.5);
+        t.sliding         = static_cast<unsigned int>(s[dim + 4] + 0.5);
+        t.max_penetration = maxima[p];
+      }
+  }
+
+  template <int dim>
+  std::vector<typename ContactProblem<dim>::NodeOutput> ContactProblem<dim>::node_outputs() const
+  {
+    std::vector<NodeOutput> out;
+    for (const auto &[key, trial] : trials)
+      {
+        NodeOutput o;
+        o.reference    = node_reference[std::get<2>(key)];
+        o.normal_force = trial.normal_force;
+        o.gap          = trial.gap;
+        o.slip         = trial.slip;
+        o.area         = trial.area;
+        o.status       = trial.normal_force > 0 ? (trial.state.sliding ? 2 : 1) : 0;
+        out.push_back(o);
+      }
+    return out;
+  }
+
+  template class ContactProblem<2>;
+  template class ContactProblem<3>;
+} // namespace anvil

@@ -1,0 +1,88 @@
+"""A block pressed and slid on a rigid plane (tests/contact_block.prm): node-to-
+tool penalty contact with Coulomb friction (seed eq. 27-29).
+
+ - Pressing (10 MPa on a 1 mm wide top): the contact carries N = p w = 10 N/mm.
+ - While it sticks, every bottom node's tangential force is its elastic slip
+   times c_T (eq. 28): sum |t_T| = c_T sum |u_x| over the bottom nodes.
+ - Sliding: the tangential force is mu N (eq. 29) and the friction work grows
+   by mu N times the slide of each step.
+ - Stick -> slip: with a soft c_T the force climbs over several steps, never
+   above mu N, and the whole block slides once it reaches mu N; with
+   mu_s = 0.3 > mu_d = 0.2 it slides at mu_d N (the element test checks the
+   mu_s peak node by node).
+ - Penalty study: the penetration is N_node / c_N and tends to 0 as c_N grows,
+   while the contact force stays p w; Newton iterations are printed.
+ - np = 1 and np = 2 give the same contact forces.
+"""
+from anvil_test import run, read_csv, check, close, finish
+
+p, w, mu, c_T = 10.0, 1.0, 0.3, 1e4
+out, s, _ = run("tests/contact_block.prm", name="contact_friction")
+c = read_csv(out + "/contact.csv")
+pr = read_csv(out + "/probes.csv")
+k = c["time"].index(1.0)
+close(c["sliding_normal"][k], p * w, 1e-9, "pressed: contact normal force = p w (N/mm)")
+close(c["sliding_Fy"][k], p * w, 1e-9, "pressed: force on the block from the floor, y (N/mm)")
+ux = sum(abs(pr["n%d_ux" % i][k]) for i in range(5))
+close(c["sliding_tangential"][k], c_T * ux, 1e-9,
+      "sticking: sum |t_T| = c_T sum |u_x| of the bottom nodes (elastic slip, eq. 28)")
+check(c["sliding_sliding_nodes"][k] == 0, "nothing slides while pressing")
+last = len(c["time"]) - 1
+close(c["sliding_tangential"][last], mu * p * w, 1e-9, "sliding: tangential force = mu N (eq. 29)")
+close(-c["sliding_Fx"][last], mu * p * w, 1e-9, "sliding: the floor pulls the block back by mu N")
+check(c["sliding_sliding_nodes"][last] == c["sliding_active_nodes"][last] > 0,
+      "sliding: every node in contact slides (%d)" % c["sliding_active_nodes"][last])
+dW = c["sliding_friction_work"][last] - c["sliding_friction_work"][last - 1]
+close(dW, mu * p * w * 0.005, 1e-6, "friction work of a sliding step = mu N x slide (N mm/mm)")
+print("  top reaction Fx at the end %.6f N/mm (mu N = 3; the follower pressure on the tilted top adds %.1e)"
+      % (s["quantities_of_interest"]["Fx"], s["quantities_of_interest"]["Fx"] - 3))
+
+# The stick -> slip transition: with a soft tangential penalty (c_T = 100
+# N/mm) the sticking phase spans several steps; the tangential force climbs,
+# never above mu N, and the block slides as a whole once it reaches mu N.
+out, s, _ = run("tests/contact_block.prm", ["Contact/sliding/Penalty tangent=100", "Time/Time step=0.02"],
+                name="contact_friction_transition")
+c = read_csv(out + "/contact.csv")
+T, slide, active = c["sliding_tangential"], c["sliding_sliding_nodes"], c["sliding_active_nodes"]
+phase2 = [i for i, t in enumerate(c["time"]) if t > 1]
+full = next(i for i in phase2 if slide[i] == active[i] > 0)
+first = next(i for i in phase2 if slide[i] > 0)
+print("  c_T = 100: T = %s ... N/mm; first node slips at t = %.2f s, all slide from t = %.2f s (T = %.6f)"
+      % (" ".join("%.3f" % T[i] for i in phase2[:8]), c["time"][first], c["time"][full], T[full]))
+check(all(T[i] <= mu * p * w * (1 + 1e-9) for i in phase2), "the tangential force never exceeds mu N")
+check(all(T[i] < T[i + 1] for i in phase2[:full - phase2[0]]), "it grows while the block sticks")
+check(full - phase2[0] >= 3, "sticking lasts several steps (%d)" % (full - phase2[0]))
+close(T[full], mu * p * w, 1e-9, "the block slides as a whole when T reaches mu N")
+
+# Static above dynamic: sliding continues at mu_d N.
+out, s, _ = run("tests/contact_block.prm", ["Contact/sliding/Dynamic friction coefficient=0.2"],
+                name="contact_friction_dynamic")
+c = read_csv(out + "/contact.csv")
+close(c["sliding_tangential"][-1], 0.2 * p * w, 1e-9, "mu_s = 0.3, mu_d = 0.2: sliding at mu_d N = 2")
+
+# Penalty study: gap -> 0 as c_N grows, the force stays p w.
+print("  %10s %14s %14s %10s %8s" % ("c_N N/mm", "penetration mm", "N/node expected", "force", "Newton"))
+prev = None
+for cn in (1e3, 1e4, 1e5, 1e6, 1e7):
+    out, s, _ = run("tests/contact_block.prm", ["Contact/sliding/Penalty normal=%g" % cn, "Time/End time=1"],
+                    name="contact_friction_penalty_%g" % cn)
+    c = read_csv(out + "/contact.csv")
+    pen = c["sliding_max_penetration"][-1]
+    newton = s["newton_iterations"] / s["steps"]
+    print("  %10.0e %14.4e %14.4e %10.6f %8.2f" % (cn, pen, p * w / 4 / cn, c["sliding_normal"][-1], newton))
+    close(c["sliding_normal"][-1], p * w, 1e-9, "c_N = %g: the contact carries p w" % cn)
+    # An interior node carries about p w / 4 (tributary 0.25 mm): penetration ~ N_node / c_N.
+    check(0.5 * p * w / 4 / cn < pen < 2 * p * w / 4 / cn, "c_N = %g: penetration %.3e ~ N_node/c_N" % (cn, pen))
+    if prev:
+        # (the nodal forces redistribute with the stiffness ratio: -> 10 as c_N grows)
+        close(prev / pen, 10, 0.12, "penetration shrinks with 1/c_N")
+    check(newton <= 3, "c_N = %g: %.2f Newton iterations per step" % (cn, newton))
+    prev = pen
+
+# np = 1 and np = 2: the same contact forces.
+o1, _, _ = run("tests/contact_block.prm", ["Geometry/Blocks=block: 0, 0, 1, 1, 8, 8"], name="contact_friction_np1")
+o2, s2, _ = run("tests/contact_block.prm", ["Geometry/Blocks=block: 0, 0, 1, 1, 8, 8"], np=2, name="contact_friction_np2")
+a, b = read_csv(o1 + "/contact.csv"), read_csv(o2 + "/contact.csv")
+worst = max(abs(x - y) for key in a for x, y in zip(a[key], b[key]))
+check(s2["processes"] == 2 and worst < 1e-8, "np = 1 vs np = 2: contact history differs by %.2e" % worst)
+finish()
