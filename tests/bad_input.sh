@@ -38,4 +38,26 @@ expect "unknown QoI probe"  "'Output/Quantities of interest'.*no probe named 'ta
 expect "reaction in a thermal-only scene" "--set: 'Output/Quantities of interest'.*reaction.*needs the mechanics.*thermal only" "$anvil" "$src/prm/heat_half_space.prm" --set "Output/Quantities of interest=r: reaction(left, x)"
 expect "unknown coupling"   "--set 'Physics/Coupling=heat'.*heat.*(mechanical only\|thermal only)" "$anvil" "$src/prm/heat_half_space.prm" --set "Physics/Coupling=heat"
 expect "mechanics in a thermal-only scene" "--set: 'Boundary conditions/Displacement' is given, but Physics/Coupling is 'thermal only'" "$anvil" "$src/prm/heat_half_space.prm" --set "Boundary conditions/Displacement=left: ux = 0"
+# Contact pairs and rigid tools (tests/contact_block.prm: pair 'sliding' of
+# the boundary 'bottom' on the plane tool 'floor', mu = 0.3, c_T = 1e4).
+c="$src/tests/contact_block.prm"
+d3=(--set "Dimension=3" --set "Geometry/Blocks=block: 0, 0, 0, 1, 1, 1, 2, 2, 2" --set "Contact/floor/Point=0, 0, 0"
+    --set "Contact/floor/Normal=0, 1, 0" --set "Contact/floor/Center=0, 0, 0" --set "Contact/floor/Motion=0, 0, 0"
+    --set "Output/Probes=" --set "Output/Quantities of interest=" --set "Boundary conditions/Displacement=top: ux = 0")
+expect "contact: unknown Slave boundary (file)" "contact_unknown_slave.prm:20: .*'nowhere'.*left, right, bottom, top" "$anvil" "$b/contact_unknown_slave.prm"
+expect "contact: unknown Slave boundary (--set)" "--set.*'Contact/sliding/Slave'.*'nowhere'.*left, right, bottom, top" "$anvil" "$c" --set "Contact/sliding/Slave=nowhere"
+expect "contact: empty Slave" "--set: 'Contact/sliding/Slave' is empty: expected the name of a boundary" "$anvil" "$c" --set "Contact/sliding/Slave="
+expect "contact: Master neither boundary nor tool" "--set: 'Contact/sliding/Master' = 'ceiling' is neither a boundary \(left, right, bottom, top\) nor a tool" "$anvil" "$c" --set "Contact/sliding/Master=ceiling"
+expect "contact: Master = Slave" "--set: 'Contact/sliding/Master' is the Slave boundary" "$anvil" "$c" --set "Contact/sliding/Master=bottom"
+expect "contact: zero normal penalty" "--set: 'Contact/sliding/Penalty normal' must be > 0" "$anvil" "$c" --set "Contact/sliding/Penalty normal=0"
+expect "contact: negative normal penalty" "--set 'Contact/sliding/Penalty normal=-1'.*Double 0" "$anvil" "$c" --set "Contact/sliding/Penalty normal=-1"
+expect "contact: friction without tangential penalty" "--set: 'Contact/sliding/Penalty tangent' must be > 0 when there is friction" "$anvil" "$c" --set "Contact/sliding/Penalty tangent=0"
+expect "contact: dynamic friction above static" "--set: 'Contact/sliding/Dynamic friction coefficient' must not exceed the static" "$anvil" "$c" --set "Contact/sliding/Dynamic friction coefficient=0.5"
+expect "contact: 3D tool in 2D" "--set: 'Contact/floor/Type' is cylinder, a 3D tool: in 2D use circle, arc, plane or polyline" "$anvil" "$c" --set "Contact/floor/Type=cylinder"
+expect "contact: 2D tool in 3D" "--set: 'Contact/floor/Type' is circle, a 2D tool: in 3D use plane, cylinder or sphere" "$anvil" "$c" "${d3[@]}" --set "Contact/floor/Type=circle"
+expect "contact: invalid tool Motion" "--set: 'Contact/floor/Motion' has an invalid expression '-t\*'.*muparser formula in t" "$anvil" "$c" --set "Contact/floor/Motion=0, -t*"
+expect "contact: tool Motion with too few components" "--set: 'Contact/floor/Motion' = '0' has 1 components: expected 2" "$anvil" "$c" --set "Contact/floor/Motion=0"
+expect "contact: two pairs with the same name" "--set: 'Contact/Pairs' uses the name 'sliding' twice.*distinct names" "$anvil" "$c" --set "Contact/Pairs=sliding, sliding"
+expect "contact: pair named like a body" "--set: 'Contact/Pairs' uses the name 'block' .*bodies need distinct names" "$anvil" "$c" --set "Contact/Pairs=block"
+expect "contact: Two-pass with a tool" "--set: 'Contact/sliding/Two-pass' is true but the Master is a rigid tool" "$anvil" "$c" --set "Contact/sliding/Two-pass=true"
 exit $fail

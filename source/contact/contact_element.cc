@@ -48,8 +48,11 @@ namespace anvil
         return x;
       }
 
-      /// Tolerance on the master parameter domain [0, 1]^(dim-1).
-      constexpr double parameter_tolerance = 1e-10;
+      /// Tolerance on the master parameter domain [0, 1]^(dim-1): a slave just
+      /// beyond the end of a master surface (by 0.1 % of a segment, e.g. when
+      /// both bodies expand laterally alike) stays in contact with the end
+      /// segment extended, instead of flipping in and out between iterations.
+      constexpr double parameter_tolerance = 1e-3;
 
       /**
        * What the geometry of a pair gives the contact law: the gap, the

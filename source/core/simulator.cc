@@ -100,9 +100,12 @@ namespace anvil
     prm.declare_entry("Quantities of interest", "", Patterns::Anything(),
                       "Named results written to summary.json at the end: 'name: expr; ...' with "
                       "expr one of reaction(boundary, x|y|z) [N], probe(name, ux|uy|uz|<field>), "
-                      "max(<field>), min(<field>), mean(<field>[, body]) where <field> is a cell "
-                      "field: stress_xx..stress_zz, von_mises, pressure [MPa], J, "
-                      "equivalent_plastic_strain.");
+                      "max(<field>), min(<field>), mean(<field>[, body]), contact(pair, "
+                      "x|y|z|normal|tangential|friction_work|active_nodes|sliding_nodes|"
+                      "max_penetration) [N, N mm, mm], optionally followed by '+ c' or '- c' "
+                      "(e.g. 'dT: mean(temperature, upper) - 300'); <field> is a cell field: "
+                      "stress_xx..stress_zz, von_mises, pressure [MPa], J, "
+                      "equivalent_plastic_strain, temperature [K] (heat scenes).");
     prm.declare_entry("Checkpoint interval", "0", Patterns::Integer(0),
                       "Write a checkpoint (output/<dir>/checkpoint) every this many steps; one is "
                       "always written at the end and when a run stops on a failure.");
@@ -256,6 +259,12 @@ namespace anvil
                                         const unsigned int q) {
           return mechanical->heat_source(cell, q);
         });
+        if (!contact.empty() && contact.has_heat())
+          {
+            // Contact conductance and frictional heat (seed eq. 30–34).
+            contact.setup_heat(thermal->get_dof_handler());
+            thermal->set_exchange(contact.heat_exchange(*thermal));
+          }
       }
     double t  = 0;
     double dt = time.time_step;
@@ -330,6 +339,9 @@ namespace anvil
                          const unsigned int q) { return mechanical->thermoelastic_source(cell, q); });
                 heat_audit.plastic += step * (source - thermoelastic);
                 heat_audit.thermoelastic += step * thermoelastic;
+                if (!contact.empty() && contact.has_heat())
+                  heat_audit.contact +=
+                    contact.account_heat(thermal->old_temperature(), thermal->temperature(), step);
               }
             thermal->commit();
             if (mechanical)
@@ -470,6 +482,8 @@ namespace anvil
       const double start = MPI_Wtime();
       if (mechanical)
         thermal->set_configuration(mechanical->get_dof_handler(), mechanical->displacement());
+      if (!contact.empty() && contact.has_heat())
+        contact.prepare_heat(t_new - t_old);
       const auto s = thermal->solve_step(t_old, t_new);
       add_thermal(s);
       result.thermal_wall += MPI_Wtime() - start;

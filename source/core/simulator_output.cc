@@ -112,6 +112,31 @@ namespace anvil
         Quantity q;
         q.name                = trim(item.substr(0, colon));
         const auto [f, args]  = parse_call(item.substr(colon + 1));
+        {
+          // An optional constant after the call: "mean(temperature, upper) - 300".
+          const std::string expr  = item.substr(colon + 1);
+          const auto        close = expr.rfind(')');
+          const std::string tail  = close == std::string::npos ? "" : trim(expr.substr(close + 1));
+          if (!tail.empty())
+            {
+              std::size_t used = 0;
+              double      c    = 0;
+              try
+                {
+                  if (tail[0] != '+' && tail[0] != '-')
+                    throw std::invalid_argument("");
+                  c = std::stod(trim(tail.substr(1)), &used);
+                  if (used != trim(tail.substr(1)).size())
+                    throw std::invalid_argument("");
+                }
+              catch (...)
+                {
+                  scene.fail(qpath, "item '" + item + "': after the call only '+ number' or "
+                                    "'- number' may follow, not '" + tail + "'");
+                }
+              q.offset = tail[0] == '-' ? -c : c;
+            }
+        }
         q.kind                = f;
         auto component_of = [&](const std::string &c) -> unsigned int {
           for (unsigned int d = 0; d < dim; ++d)
@@ -225,7 +250,7 @@ namespace anvil
     if (thermal)
       columns.insert(columns.end(),
                      {"heat_content", "heat_content_change", "boundary_heat_in", "source_heat",
-                      "plastic_heat", "thermoelastic_heat", "heat_balance_error"});
+                      "plastic_heat", "thermoelastic_heat", "contact_heat", "heat_balance_error"});
     energy_csv.open(output_dir + "/energy.csv", columns, root, append);
     if (mechanical)
       newton_csv.open(output_dir + "/newton.csv",
@@ -240,7 +265,8 @@ namespace anvil
             for (unsigned int d = 0; d < dim; ++d)
               columns.push_back(p.name + "_F" + "xyz"[d]);
             for (const auto *c : {"_normal", "_tangential", "_friction_work", "_active_nodes",
-                                  "_sliding_nodes", "_max_penetration"})
+                                  "_sliding_nodes", "_max_penetration", "_heat_exchanged",
+                                  "_friction_heat"})
               columns.push_back(p.name + c);
           }
         contact_csv.open(output_dir + "/contact.csv", columns, root, append);
@@ -267,9 +293,10 @@ namespace anvil
     b.plastic       = heat_audit.plastic;
     b.thermoelastic = heat_audit.thermoelastic;
     b.source        = thermal->source_heat() - b.plastic - b.thermoelastic;
-    const double residual = b.change - b.boundary - thermal->source_heat();
+    b.contact       = heat_audit.contact;
+    const double residual = b.change - b.boundary - thermal->source_heat() - b.contact;
     const double scale    = std::max({std::abs(b.change), std::abs(b.boundary),
-                                      std::abs(thermal->source_heat()), 1e-300});
+                                      std::abs(thermal->source_heat()), std::abs(b.contact), 1e-300});
     b.error = std::abs(residual) / scale;
     return b;
   }
@@ -318,7 +345,8 @@ namespace anvil
             for (unsigned int d = 0; d < dim; ++d)
               row.push_back(c.force[d]);
             row.insert(row.end(), {c.normal, c.tangential, c.friction_work, double(c.active),
-                                   double(c.sliding), c.max_penetration});
+                                   double(c.sliding), c.max_penetration, c.heat_exchanged,
+                                   c.friction_heat});
           }
         contact_csv.add_row(row);
       }
@@ -333,7 +361,8 @@ namespace anvil
       {
         const auto b = heat_balance();
         row.insert(row.end(),
-                   {b.content, b.change, b.boundary, b.source, b.plastic, b.thermoelastic, b.error});
+                   {b.content, b.change, b.boundary, b.source, b.plastic, b.thermoelastic,
+                    b.contact, b.error});
       }
     energy_csv.add_row(row);
   }
@@ -414,7 +443,7 @@ namespace anvil
         };
         line(mechanical ? mechanical->checkpoint_scalars() : std::vector<double>());
         line(thermal ? thermal->checkpoint_scalars() : std::vector<double>());
-        line({initial_heat_content, heat_audit.plastic, heat_audit.thermoelastic,
+        line({initial_heat_content, heat_audit.plastic, heat_audit.thermoelastic, heat_audit.contact,
               double(n_thermal_steps), double(n_thermal_nonlinear), double(n_staggered_iterations)});
         state << pvd_records.size() << '\n';
         for (const auto &[time, name] : pvd_records)
@@ -443,7 +472,7 @@ namespace anvil
     const auto thermal_scalars    = line();
     const auto heat_scalars       = line();
     if (!state || (mechanical && mechanical_scalars.empty()) || (thermal && thermal_scalars.empty()) ||
-        heat_scalars.size() != 6)
+        heat_scalars.size() != 7)
       throw InputError(restart_directory +
                        "/state.txt: the checkpoint was not written by this scene's physics "
                        "(Physics/Coupling differs) or is damaged");
@@ -454,9 +483,10 @@ namespace anvil
     initial_heat_content     = heat_scalars[0];
     heat_audit.plastic       = heat_scalars[1];
     heat_audit.thermoelastic = heat_scalars[2];
-    n_thermal_steps          = static_cast<unsigned long>(heat_scalars[3]);
-    n_thermal_nonlinear      = static_cast<unsigned long>(heat_scalars[4]);
-    n_staggered_iterations   = static_cast<unsigned long>(heat_scalars[5]);
+    heat_audit.contact       = heat_scalars[3];
+    n_thermal_steps          = static_cast<unsigned long>(heat_scalars[4]);
+    n_thermal_nonlinear      = static_cast<unsigned long>(heat_scalars[5]);
+    n_staggered_iterations   = static_cast<unsigned long>(heat_scalars[6]);
     std::size_t n = 0;
     state >> n;
     pvd_records.resize(n);
@@ -560,7 +590,7 @@ namespace anvil
             else
               value = Utilities::MPI::min(extreme, mpi_communicator);
           }
-        qoi_values.emplace_back(q.name, value);
+        qoi_values.emplace_back(q.name, value + q.offset);
       }
   }
 
@@ -617,6 +647,7 @@ namespace anvil
         s.set("heat", "source_heat", b.source);
         s.set("heat", "plastic_heat", b.plastic);
         s.set("heat", "thermoelastic_heat", b.thermoelastic);
+        s.set("heat", "contact_heat", b.contact);
         s.set("heat", "balance_error", b.error);
         s.set("heat", "arkode_internal_steps", double(n_thermal_steps));
         s.set("heat", "arkode_steps_per_step", n_steps ? double(n_thermal_steps) / n_steps : 0.);
@@ -631,6 +662,8 @@ namespace anvil
         s.set("contact", name + "_tangential", c.tangential);
         s.set("contact", name + "_friction_work", c.friction_work);
         s.set("contact", name + "_max_penetration", c.max_penetration);
+        s.set("contact", name + "_heat_exchanged", c.heat_exchanged);
+        s.set("contact", name + "_friction_heat", c.friction_heat);
       }
     for (const auto &[name, value] : qoi_values)
       s.set("quantities_of_interest", name, value);

@@ -152,6 +152,11 @@ namespace anvil
     }
     rhs *= -1.;
     rhs += step_sources;
+    if (exchange.add_rhs)
+      {
+        exchange.add_rhs(t, y, rhs);
+        rhs.compress(VectorOperation::add);
+      }
     // Prescribed fluxes at t, on their faces only.
     bool any_flux = false;
     for (const auto &[id, b] : boundary_conditions.boundaries)
@@ -349,6 +354,11 @@ namespace anvil
     if (rhs)
       {
         rhs->compress(VectorOperation::add);
+        if (exchange.add_rhs)
+          {
+            exchange.add_rhs(t, y, *rhs);
+            rhs->compress(VectorOperation::add);
+          }
         for (const auto i : dirichlet_dofs)
           {
             const auto it = g_dot.find(i);
@@ -388,6 +398,16 @@ namespace anvil
       {
         newton_matrix.copy_from(mass_matrix);
         newton_matrix.add(gamma, tangent_matrix);
+      }
+    if (exchange.add_diagonal)
+      {
+        // The exchange's diagonal (its couplings act through GMRES only).
+        Vector diagonal(locally_owned_dofs, mpi_communicator);
+        exchange.add_diagonal(diagonal);
+        for (const auto i : locally_owned_dofs)
+          if (diagonal(i) != 0)
+            newton_matrix.add(i, i, gamma * diagonal(i));
+        newton_matrix.compress(VectorOperation::add);
       }
     if (use_direct)
       {

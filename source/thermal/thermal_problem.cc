@@ -229,6 +229,11 @@ namespace anvil
     {
       p.tangent_matrix.vmult(Jv, v); // J = −∂(K T − F)/∂T
       Jv *= -1.;
+      if (p.exchange.add_jacobian)
+        {
+          p.exchange.add_jacobian(v, Jv);
+          Jv.compress(VectorOperation::add);
+        }
       return 0;
     }
     int setup_newton_matrix(const double gamma) override

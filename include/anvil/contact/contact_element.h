@@ -37,7 +37,7 @@ namespace anvil
    *    face_order_gives_outward_normal() says which.
    *  - The projection ξ of the slave is the closest point on the master (in 3D
    *    by Newton in (ξ, η) on the bilinear surface). If it falls outside the
-   *    parameter domain (by more than 1e-10), projection_inside = false and
+   *    parameter domain (by more than 1e-3, so that a slave just beyond the end of a master surface stays in contact with the end segment extended), projection_inside = false and
    *    in_contact = false: the caller tries the neighbouring master. At a
    *    vertex both neighbours may accept the node: the caller keeps one.
    *  - Normal contact, penalty (eq. 27): t_N = c_N ⟨−g_N⟩ ≥ 0 per node (the

@@ -8,6 +8,7 @@
 
 #include <anvil/contact/contact_element.h>
 #include <anvil/contact/rigid_tool.h>
+#include <anvil/thermal/thermal_problem.h>
 
 #include <functional>
 #include <map>
@@ -83,6 +84,8 @@ namespace anvil
       double                 normal = 0, tangential = 0; // sums of t_N and |t_T| over the nodes, N
       double                 friction_work   = 0;            // accumulated, N mm
       double                 max_penetration = 0;            // at the last commit, mm
+      double                 heat_exchanged = 0; // accumulated conduction slave -> master (eq. 30), mJ
+      double                 friction_heat  = 0; // accumulated frictional heat into the bodies (eq. 31-33), mJ
       unsigned int           active = 0, sliding = 0;        // nodes at the last commit
     };
 
@@ -134,6 +137,29 @@ namespace anvil
 
     const std::vector<PairTotals> &totals() const { return pair_totals; }
 
+    // ------------------------------------------------------------- heat
+    /// Whether any pair exchanges heat (a conductance or friction).
+    bool has_heat() const;
+    /// Map the surface nodes to the temperature dofs (collective).
+    void setup_heat(const dealii::DoFHandler<dim> &thermal_dofs);
+    /**
+     * Freeze the step's exchange from the last converged mechanics
+     * (collective): per slave node in contact, the conductance
+     * h A = h₀ (p/H)^e A (eq. 34, p = t_N/A, A its tributary area) to the
+     * master point (or tool) below it, and the frictional power
+     * D = t_T · slip / Δt (eq. 31), the slave side receiving the share given
+     * by the relative effusivity (eq. 32–33) — none while sticking.
+     */
+    void prepare_heat(double time_step);
+    /// The exchange as the thermal problem applies it (eq. 30–33).
+    typename ThermalProblem<dim>::Exchange heat_exchange(const ThermalProblem<dim> &thermal);
+    /**
+     * After an accepted thermal phase: heat exchanged over the step
+     * (trapezoidal in T), friction heat; returns the heat that entered the
+     * bodies from the contact: friction heat plus what rigid tools gave (mJ).
+     */
+    double account_heat(const Vector &T_old, const Vector &T_new, double time_step);
+
     /// Per-node results of the last commit, for output: slave node position
     /// (reference), pressure-like t_N/area, gap, slip, status (0 open, 1 stick, 2 slip).
     struct NodeOutput
@@ -161,7 +187,19 @@ namespace anvil
       contact::NodeState<dim> state;
       double normal_force = 0, tangential_force = 0, gap = 0, slip = 0, work = 0, area = 0;
       dealii::Tensor<1, dim>  force_on_slave; // normal + tangential, N
+      int                     face = -1;      // master face (deformable master)
+      std::vector<double>     weights;        // master shape functions at the projection
     };
+    /// One slave node's heat exchange over a step (gathered on every process).
+    struct HeatElement
+    {
+      unsigned int pair = 0, slave = 0, n_master = 0;
+      unsigned int master[4] = {0, 0, 0, 0};
+      double       weight[4] = {0, 0, 0, 0};
+      int          tool = -1;
+      double       hA = 0, power = 0, share = 0.5; // mW/K, mW, slave share of the power
+    };
+    std::vector<double> gather_node_values(const Vector &v) const;
 
     void   gather_positions(const Vector &u_ghosted, std::vector<dealii::Point<dim>> &x) const;
     double tributary_area(unsigned int node, const Surface &surface,
@@ -181,6 +219,7 @@ namespace anvil
     std::vector<dealii::Point<dim>>                              node_reference;
     std::vector<std::array<dealii::types::global_dof_index, dim>> node_dofs;
     std::vector<bool>                                            node_owned; // x dof locally owned
+    std::vector<unsigned int>                                    node_body;  // material id
     std::vector<Face>                                            faces;
     std::map<dealii::types::boundary_id, Surface>                surfaces;
     double                                                       largest_face = 0;
@@ -200,5 +239,11 @@ namespace anvil
     mutable std::set<std::tuple<unsigned int, unsigned int, unsigned int, unsigned int>> allowed;
     mutable std::set<std::tuple<unsigned int, unsigned int, unsigned int, unsigned int>> requested;
     mutable bool grew = false;
+
+    // Heat.
+    std::vector<dealii::types::global_dof_index> node_thermal_dof;
+    std::vector<bool>                            node_thermal_owned;
+    std::vector<HeatElement>                     heat_elements;
+    double                                       heat_time = 0;
   };
 } // namespace anvil

@@ -70,6 +70,7 @@ namespace anvil
       dealii::types::boundary_id boundary = 0;
       int                        body     = -1;
       unsigned int               component = 0;
+      double                     offset    = 0; // "f(...) + c"
     };
 
     /// What one coupled step did (both halves, all staggered iterations).
@@ -89,7 +90,7 @@ namespace anvil
     /// Heat made in the bodies, accumulated over accepted steps (mJ).
     struct HeatAudit
     {
-      double plastic = 0, thermoelastic = 0;
+      double plastic = 0, thermoelastic = 0, contact = 0; // contact: friction heat + heat from tools
     };
 
     /// The heat balance since t = 0 (mJ): content, its change, heat in through
@@ -98,7 +99,7 @@ namespace anvil
     struct HeatBalance
     {
       double content = 0, change = 0, boundary = 0, source = 0, plastic = 0, thermoelastic = 0,
-             error = 0;
+             contact = 0, error = 0;
     };
     HeatBalance heat_balance() const;
 

@@ -170,6 +170,21 @@ namespace anvil
                            const Vector                  &displacement_ghosted);
     void set_heat_source(const HeatSource &source);
 
+    /**
+     * Heat exchanged at nodes outside the cells' coupling (contact, eq. 30–33),
+     * linear in T over a step: f += q(T), ∂q/∂T applied matrix-free. Each
+     * function writes only locally owned entries of its output.
+     */
+    struct Exchange
+    {
+      std::function<void(double t, const Vector &T, Vector &f)> add_rhs;    // f += q(T)
+      std::function<void(const Vector &v, Vector &Jv)>          add_jacobian; // Jv += ∂q/∂T v
+      std::function<void(Vector &diagonal)>                     add_diagonal; // += −diag(∂q/∂T)
+    };
+    void set_exchange(const Exchange &e) { exchange = e; }
+    /// Hanging-node or Temperature constraint on dof @p i (exchange skips those rows).
+    bool is_constrained(dealii::types::global_dof_index i) const { return constraints.is_constrained(i); }
+
     /// Advance T from the committed state at @p time_old to @p time_new.
     Statistics solve_step(double time_old, double time_new);
     /// Accept the last solve_step (T becomes the committed state, heat flows accumulate).
@@ -270,6 +285,7 @@ namespace anvil
 
     std::shared_ptr<dealii::FunctionParser<dim>> initial_function, source_function;
     HeatSource heat_source;
+    Exchange   exchange;
 
     dealii::TrilinosWrappers::SparseMatrix mass_matrix, tangent_matrix, newton_matrix;
     Vector lumped_mass, mass_diagonal;

@@ -1,0 +1,184 @@
+"""The contact patch test (tests/contact_patch.prm): two elastic blocks stacked,
+pressed by a uniform follower pressure p on the upper top, frictionless
+node-to-segment penalty contact between the upper block's bottom (slave) and
+the lower block's top (master). Exact answer: sigma_yy = -p, sigma_xx =
+sigma_xy = 0 in both blocks, and the contact carries p times the current
+width w = 1 + ux of the upper top right corner (the left sides are held in x;
+the follower pressure acts on the current top, whose horizontal extent is w).
+
+What is checked, per variant (matching 5/5 and non-matching 5/7, 7/5 cells
+along the lower/upper interface; one-pass and two-pass):
+ - the contact normal force sum t_N = p w to 1e-9 at every step (and, one
+   pass, the vertical component of the contact force on the upper block);
+ - the stress: the cell averages of sigma_yy, read by probes at every cell
+   centre, per body, as max |sigma_yy + p| / p; the quantities of interest
+   max(stress_yy) and min(stress_yy) (over both bodies: max/min take no body
+   argument) agree with the probes; mean(stress_yy, body) is printed;
+ - matching meshes pass the patch test to round-off, one-pass and two-pass;
+ - non-matching one-pass node-to-segment does NOT pass it (the known
+   defect: the slave nodes cannot transmit a uniform traction onto master
+   segments they do not match): errors of 4 to 14 % of p at the cells along
+   the interface, independent of the penalty (a consistency error, not a
+   penalty error); asserted below 20 %;
+ - non-matching two-pass: well below 1 % at c_N = 1e8 N/mm^3 and decreasing
+   as the penalty grows (~ c_N^-0.6 measured), so better than one pass;
+ - mpirun -np 2 gives the same contact history to 1e-8.
+
+Known limitation (not asserted): with the two surfaces ending at the same
+x (the aligned ends of a patch test), the end slave nodes project onto the
+master's end vertex with xi = g_N sin(theta)/L off by more than the 1e-10
+tolerance for small penalties, flip in and out of contact and Newton fails
+for c_N <= 1e7 N/mm^3 on non-matching meshes (with a master longer than the
+slave all penalties converge). The scene therefore uses c_N = 1e8.
+"""
+from anvil_test import run, read_csv, check, close, finish
+
+p = 10.0
+SCENE = "tests/contact_patch.prm"
+NY = 3  # cells through each block's height
+
+
+def cell_probes(nl, nu):
+    """A probe at every cell centre: 'l<i>_<j>' in the lower block, 'u<i>_<j>' in the upper."""
+    items = []
+    for tag, y0, n in (("l", 0.0, nl), ("u", 0.5, nu)):
+        for i in range(n):
+            for j in range(NY):
+                items.append("%s%d_%d: %.15g, %.15g" % (tag, i, j, (i + 0.5) / n, y0 + (j + 0.5) * 0.5 / NY))
+    return "; ".join(items)
+
+
+def patch(nl, nu, two_pass, cn, np=1):
+    name = "contact_patch_%d_%d_%s_%g%s" % (nl, nu, "two" if two_pass else "one", cn,
+                                            "_np%d" % np if np > 1 else "")
+    sets = ["Geometry/Blocks=lower: 0, 0, 1, 0.5, %d, %d; upper: 0, 0.5, 1, 1, %d, %d" % (nl, NY, nu, NY),
+            "Contact/interface/Two-pass=%s" % ("true" if two_pass else "false"),
+            "Contact/interface/Penalty normal=%g" % cn,
+            "Output/Probes=corner: 1, 1; " + cell_probes(nl, nu)]
+    out, s, _ = run(SCENE, sets, np=np, name=name)
+    pr, c = read_csv(out + "/probes.csv"), read_csv(out + "/contact.csv")
+    q = s["quantities_of_interest"]
+    r = {"summary": s, "contact": c, "q": q, "out": out}
+    # Contact force history against p(t) w(t), relative to p w at the end.
+    w = [1 + ux for ux in pr["corner_ux"]]
+    pw = [p * t * wi for t, wi in zip(c["time"], w)]
+    r["w"] = w[-1]
+    r["N_err"] = max(abs(n - f) for n, f in zip(c["interface_normal"], pw)) / pw[-1]
+    r["Fy_err"] = max(abs(n - f) for n, f in zip(c["interface_Fy"], pw)) / pw[-1]
+    for tag in "lu":
+        syy = [pr[k][-1] for k in pr if k.startswith(tag) and k.endswith("_stress_yy")]
+        others = [abs(pr[k][-1]) for k in pr if k.startswith(tag) and
+                  (k.endswith("_stress_xx") or k.endswith("_stress_xy"))]
+        r[tag + "_max"], r[tag + "_min"] = max(syy), min(syy)
+        r[tag + "_err"] = max(abs(x + p) for x in syy) / p
+        r[tag + "_other"] = max(others) / p
+    r["err"] = max(r["l_err"], r["u_err"])
+    return r
+
+
+def label(nl, nu, two_pass):
+    return "%d/%d %s" % (nl, nu, "two-pass" if two_pass else "one-pass")
+
+
+print("p = %g MPa; errors relative to p; stresses: cell averages at the cell centres, at t = 1" % p)
+print("  %-15s %9s %10s %10s %10s %10s %10s %10s %10s %10s %10s %6s" % (
+    "lower/upper", "c_N", "sum t_N", "N-pw rel", "lower max", "lower min", "upper max", "upper min",
+    "err lower", "err upper", "sxx,sxy", "active"))
+
+
+def show(nl, nu, two_pass, cn, r):
+    print("  %-15s %9.0e %10.6f %10.2e %10.5f %10.5f %10.5f %10.5f %10.2e %10.2e %10.2e %6d" % (
+        label(nl, nu, two_pass), cn, r["contact"]["interface_normal"][-1], r["N_err"],
+        r["l_max"], r["l_min"], r["u_max"], r["u_min"], r["l_err"], r["u_err"],
+        max(r["l_other"], r["u_other"]), r["contact"]["interface_active_nodes"][-1]))
+
+
+CN = 1e8
+results = {}
+for nl, nu in ((5, 5), (5, 7), (7, 5)):
+    for two_pass in (False, True):
+        r = patch(nl, nu, two_pass, CN)
+        results[(nl, nu, two_pass)] = r
+        show(nl, nu, two_pass, CN, r)
+
+for (nl, nu, two_pass), r in results.items():
+    what = label(nl, nu, two_pass)
+    q = r["q"]
+    check(r["summary"]["status"] == "completed" and r["contact"]["time"][-1] == 1.0,
+          "%s: ran to t = 1" % what)
+    # sum t_N = p w to 1e-9: the residual's round-off floor is ~ c_N h eps ~ 2e-9 N
+    # against p w = 10 N; the tilt of the non-matching interface (n_y = cos theta,
+    # theta ~ 4e-5) adds sum t_N theta^2 / 2 ~ 1e-9 N, measured <= 8.4e-10 relative.
+    check(r["N_err"] <= 1e-9, "%s: contact normal force sum t_N = p w at every step (max error %.2e p w)"
+          % (what, r["N_err"]))
+    if not two_pass:
+        check(r["Fy_err"] <= 1e-9, "%s: vertical contact force on the upper block = p w at every step "
+              "(max error %.2e p w)" % (what, r["Fy_err"]))
+    # The quantities of interest max/min(stress_yy) are over both bodies: the
+    # extremes of the per-body probes (probes.csv has 12 significant digits).
+    close(q["syy_max"], max(r["l_max"], r["u_max"]), 1e-10, "%s: max(stress_yy) = max of the cell probes" % what)
+    close(q["syy_min"], min(r["l_min"], r["u_min"]), 1e-10, "%s: min(stress_yy) = min of the cell probes" % what)
+    # The volume means follow from equilibrium (virtual work with a linear test
+    # field) up to the strain level (reference volume weights, ~ 1e-4) even
+    # where the pointwise stresses are wrong.
+    for b in ("lower", "upper"):
+        close(q["syy_" + b], -p, 2e-4, "%s: mean(stress_yy, %s) = -p up to the strain (p/E = 1.4e-4)" % (what, b))
+
+# Not asserted: with Two-pass the force columns of contact.csv add the second
+# pass's force, which acts on the lower block, to the first's on the upper.
+print("  two-pass contact(interface, y) at t = 1 (not a force on one body): %s"
+      % ", ".join("%d/%d %.6f" % (nl, nu, results[(nl, nu, True)]["q"]["Fy"]) for nl, nu in ((5, 5), (5, 7), (7, 5))))
+
+# Matching meshes: the nodes coincide, the patch test passes to round-off
+# (measured ~ 1e-12 p, bound 1e-9 p).
+for two_pass in (False, True):
+    r = results[(5, 5, two_pass)]
+    check(r["err"] <= 1e-9 and max(r["l_other"], r["u_other"]) <= 1e-9,
+          "%s: uniform sigma_yy = -p and sigma_xx = sigma_xy = 0 in both blocks (error %.2e p)"
+          % (label(5, 5, two_pass), max(r["err"], r["l_other"], r["u_other"])))
+# Non-matching one pass: the known failure, bounded (measured 3.9 % to 13.5 %).
+for nl, nu in ((5, 7), (7, 5)):
+    one, two = results[(nl, nu, False)], results[(nl, nu, True)]
+    check(one["err"] < 0.2, "%s: patch test error %.2f %% of p (node-to-segment one pass does not pass "
+          "it; bound 20 %%)" % (label(nl, nu, False), 100 * one["err"]))
+    check(two["err"] < 0.01, "%s: patch test error %.3f %% of p (bound 1 %% at c_N = %g)"
+          % (label(nl, nu, True), 100 * two["err"], CN))
+    check(two["err"] < one["err"] / 5, "%d/%d: two-pass (%.2e) is better than one-pass (%.2e) by %.0fx"
+          % (nl, nu, two["err"], one["err"], one["err"] / two["err"]))
+
+# Penalty study on the non-matching meshes: the one-pass error does not go
+# away with the penalty, the two-pass error does. Above ~1e9 the residual's
+# round-off floor (~ c_N h eps) exceeds Newton's tolerance (c_N = 1e10 fails).
+print("  penalty study (the force tolerance grows with c_N: the residual's round-off floor is ~ c_N h eps)")
+for nl, nu in ((5, 7), (7, 5)):
+    for two_pass in (False, True):
+        errs = []
+        for cn in (1e8, 3e8, 1e9):
+            r = results[(nl, nu, two_pass)] if cn == CN else patch(nl, nu, two_pass, cn)
+            if cn != CN:
+                show(nl, nu, two_pass, cn, r)
+            check(r["N_err"] <= 1e-9 * cn / 1e8, "%s, c_N = %g: sum t_N = p w (error %.2e p w)"
+                  % (label(nl, nu, two_pass), cn, r["N_err"]))
+            errs.append(r["err"])
+        what = label(nl, nu, two_pass)
+        if two_pass:
+            # measured: 1e8 -> 1e9 divides the error by 3.6 to 4.9
+            check(errs[0] > errs[1] > errs[2] and errs[0] / errs[2] > 2.5,
+                  "%s: the error falls as the penalty grows: %s (1e8 -> 1e9: / %.1f, ~ c_N^-%.2f)"
+                  % (what, ", ".join("%.2e" % e for e in errs), errs[0] / errs[2],
+                     __import__("math").log10(errs[0] / errs[2])))
+        else:
+            # measured: the one-pass error changes by < 0.3 % from 1e8 to 1e9
+            check(abs(errs[2] / errs[0] - 1) < 0.02,
+                  "%s: the error is independent of the penalty: %s (a consistency error of one-pass "
+                  "node-to-segment, not a penalty error)" % (what, ", ".join("%.4e" % e for e in errs)))
+
+# np = 1 and np = 2: the same contact history.
+for two_pass in (False, True):
+    a = results[(5, 7, two_pass)]["contact"]
+    b = patch(5, 7, two_pass, CN, np=2)
+    worst = max(abs(x - y) for key in a for x, y in zip(a[key], b["contact"][key]))
+    check(b["summary"]["processes"] == 2 and len(a["time"]) == len(b["contact"]["time"]) and worst < 1e-8,
+          "%s: np = 1 vs np = 2: contact history differs by %.2e (max over all columns and steps)"
+          % (label(5, 7, two_pass), worst))
+finish()
