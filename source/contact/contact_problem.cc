@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <numeric>
 
@@ -495,6 +496,7 @@ namespace anvil
                       }
                   }
                 Trial &trial = trials[key];
+                trial.position = x[n];
                 if (!result.in_contact)
                   trial.face = -1;
                 trial.state  = result.new_state;
@@ -560,18 +562,80 @@ namespace anvil
   std::vector<typename ContactProblem<dim>::NodeOutput> ContactProblem<dim>::node_outputs() const
   {
     std::vector<NodeOutput> out;
+    const double            dt = t_new - t_old;
     for (const auto &[key, trial] : trials)
       {
-        NodeOutput o;
-        o.reference    = node_reference[std::get<2>(key)];
-        o.normal_force = trial.normal_force;
-        o.gap          = trial.gap;
-        o.slip         = trial.slip;
-        o.area         = trial.area;
-        o.status       = trial.normal_force > 0 ? (trial.state.sliding ? 2 : 1) : 0;
+        const Pair &pair = pairs[std::get<0>(key)];
+        NodeOutput  o;
+        o.pair     = std::get<0>(key);
+        o.position = trial.position;
+        if (trial.normal_force > 0 && trial.area > 0)
+          {
+            o.pressure    = trial.normal_force / trial.area;
+            o.conductance = pair.conductance > 0 ?
+                              pair.conductance * std::pow(o.pressure / pair.hardness, pair.exponent) :
+                              0.;
+          }
+        o.gap            = trial.gap;
+        o.slip           = trial.slip;
+        o.friction_power = dt > 0 ? trial.work / dt : 0.;
+        o.status         = trial.normal_force > 0 ? (trial.state.sliding ? 2 : 1) : 0;
         out.push_back(o);
       }
     return out;
+  }
+
+  template <int dim>
+  void ContactProblem<dim>::save(std::ostream &out) const
+  {
+    // (pair, pass, node, in_contact, sliding, t_T) of every process.
+    std::vector<double> local;
+    for (const auto &[key, st] : committed)
+      if (node_owned[std::get<2>(key)])
+      {
+        local.insert(local.end(), {double(std::get<0>(key)), double(std::get<1>(key)),
+                                   double(std::get<2>(key)), st.in_contact ? 1. : 0., st.sliding ? 1. : 0.});
+        for (unsigned int d = 0; d < dim; ++d)
+          local.push_back(st.tangential_force[d]);
+      }
+    std::vector<double> all;
+    for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
+      all.insert(all.end(), part.begin(), part.end());
+    out << std::setprecision(17) << all.size();
+    for (const double x : all)
+      out << ' ' << x;
+    out << ' ' << pair_totals.size();
+    for (const auto &t : pair_totals)
+      out << ' ' << t.friction_work << ' ' << t.heat_exchanged << ' ' << t.friction_heat;
+    out << '\n';
+  }
+
+  template <int dim>
+  void ContactProblem<dim>::load(std::istream &in)
+  {
+    std::size_t n = 0;
+    in >> n;
+    std::vector<double> all(n);
+    for (double &x : all)
+      in >> x;
+    committed.clear();
+    for (std::size_t i = 0; i + 5 + dim <= all.size(); i += 5 + dim)
+      {
+        contact::NodeState<dim> st;
+        st.in_contact = all[i + 3] > 0.5;
+        st.sliding    = all[i + 4] > 0.5;
+        for (unsigned int d = 0; d < dim; ++d)
+          st.tangential_force[d] = all[i + 5 + d];
+        committed[Key(static_cast<unsigned int>(all[i]), static_cast<unsigned int>(all[i + 1]),
+                      static_cast<unsigned int>(all[i + 2]))] = st;
+      }
+    std::size_t n_pairs = 0;
+    in >> n_pairs;
+    AssertThrow(n_pairs == pair_totals.size(),
+                ExcMessage("the checkpoint has " + std::to_string(n_pairs) +
+                           " contact pairs, the scene " + std::to_string(pair_totals.size())));
+    for (auto &t : pair_totals)
+      in >> t.friction_work >> t.heat_exchanged >> t.friction_heat;
   }
 
   template <int dim>

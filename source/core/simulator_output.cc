@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <sstream>
 
 namespace anvil
 {
@@ -405,6 +406,8 @@ namespace anvil
     const std::string name = data_out.write_vtu_with_pvtu_record(output_dir + "/fields/",
                                                                  "solution", step,
                                                                  mpi_communicator, 5);
+    if (!contact.empty())
+      write_contact_fields(t, step);
     // Replace a record at the same time (a final write after a failure).
     if (!pvd_records.empty() && pvd_records.back().first == t)
       pvd_records.pop_back();
@@ -414,6 +417,62 @@ namespace anvil
         std::ofstream pvd(output_dir + "/solution.pvd");
         DataOutBase::write_pvd_record(pvd, pvd_records);
       }
+  }
+
+  template <int dim>
+  void Simulator<dim>::write_contact_fields(const double t, const unsigned int step)
+  {
+    // The slave nodes as a point cloud (fields/contact_<step>.vtu, contact.pvd):
+    // pressure, gap, slip, status, frictional power, conductance, pair.
+    std::vector<double> local;
+    for (const auto &o : contact.node_outputs())
+      {
+        for (unsigned int d = 0; d < 3; ++d)
+          local.push_back(d < dim ? o.position[d] : 0.);
+        local.insert(local.end(), {o.pressure, o.gap, o.slip, double(o.status), o.friction_power,
+                                   o.conductance, double(o.pair)});
+      }
+    const auto parts = Utilities::MPI::all_gather(mpi_communicator, local);
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    std::vector<double> all;
+    for (const auto &part : parts)
+      all.insert(all.end(), part.begin(), part.end());
+    const unsigned int width = 10, n = all.size() / width;
+    const std::string  name  = "contact_" + Utilities::int_to_string(step, 5) + ".vtu";
+    std::ofstream      vtu(output_dir + "/fields/" + name);
+    vtu << std::setprecision(10)
+        << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"
+        << "<UnstructuredGrid><Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n << "\">\n"
+        << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (unsigned int i = 0; i < n; ++i)
+      vtu << all[i * width] << ' ' << all[i * width + 1] << ' ' << all[i * width + 2] << '\n';
+    vtu << "</DataArray></Points>\n<Cells>\n"
+        << "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+    for (unsigned int i = 0; i < n; ++i)
+      vtu << i << ' ';
+    vtu << "\n</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+    for (unsigned int i = 0; i < n; ++i)
+      vtu << i + 1 << ' ';
+    vtu << "\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+    for (unsigned int i = 0; i < n; ++i)
+      vtu << "1 "; // VTK_VERTEX
+    vtu << "\n</DataArray>\n</Cells>\n<PointData>\n";
+    const char *names[] = {"contact_pressure", "gap", "slip", "status", "frictional_power",
+                           "conductance", "pair"};
+    for (unsigned int f = 0; f < 7; ++f)
+      {
+        vtu << "<DataArray type=\"Float64\" Name=\"" << names[f] << "\" format=\"ascii\">\n";
+        for (unsigned int i = 0; i < n; ++i)
+          vtu << all[i * width + 3 + f] << ' ';
+        vtu << "\n</DataArray>\n";
+      }
+    vtu << "</PointData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+    if (!contact_records.empty() && contact_records.back().first == t)
+      contact_records.pop_back();
+    contact_records.emplace_back(t, "fields/" + name);
+    std::ofstream pvd(output_dir + "/contact.pvd");
+    DataOutBase::write_pvd_record(pvd, contact_records);
   }
 
   template <int dim>
@@ -430,6 +489,9 @@ namespace anvil
     if (thermal)
       thermal->prepare_checkpoint();
     triangulation.save(dir + "/mesh");
+    std::ostringstream contact_state; // collective
+    if (!contact.empty())
+      contact.save(contact_state);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       {
         std::ofstream state(dir + "/state.txt");
@@ -448,6 +510,7 @@ namespace anvil
         state << pvd_records.size() << '\n';
         for (const auto &[time, name] : pvd_records)
           state << time << ' ' << name << '\n';
+        state << (contact.empty() ? "0\n" : contact_state.str());
       }
   }
 
@@ -492,6 +555,8 @@ namespace anvil
     pvd_records.resize(n);
     for (auto &[time, name] : pvd_records)
       state >> time >> name;
+    if (!contact.empty())
+      contact.load(state);
     if (!state)
       throw InputError(restart_directory + "/state.txt: cannot read the checkpoint state");
     current_time = t;

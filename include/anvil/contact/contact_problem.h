@@ -160,15 +160,23 @@ namespace anvil
      */
     double account_heat(const Vector &T_old, const Vector &T_new, double time_step);
 
-    /// Per-node results of the last commit, for output: slave node position
-    /// (reference), pressure-like t_N/area, gap, slip, status (0 open, 1 stick, 2 slip).
+    /// Per-node results of the last commit, for output (this process's slave nodes).
     struct NodeOutput
     {
-      dealii::Point<dim> reference;
-      double             normal_force = 0, gap = 0, slip = 0, area = 0;
-      int                status       = 0;
+      dealii::Point<dim> position;          // current, mm
+      double             pressure = 0;       // t_N / A, MPa
+      double             gap = 0, slip = 0;  // mm (slip: this step's)
+      double             friction_power = 0; // D = t_T . slip / dt, mW (per node)
+      double             conductance = 0;    // h = h0 (p/H)^e, mW/(mm^2 K)
+      int                status = 0;         // 0 open, 1 stick, 2 slip
+      unsigned int       pair   = 0;
     };
     std::vector<NodeOutput> node_outputs() const;
+
+    /// Checkpoint: every committed node state (all processes take part; the
+    /// stream is written on, or read by, every process alike).
+    void save(std::ostream &out) const;
+    void load(std::istream &in);
 
   private:
     struct Face
@@ -188,6 +196,7 @@ namespace anvil
       double normal_force = 0, tangential_force = 0, gap = 0, slip = 0, work = 0, area = 0;
       dealii::Tensor<1, dim>  force_on_slave; // normal + tangential, N
       int                     face = -1;      // master face (deformable master)
+      dealii::Point<dim>      position;       // current slave position
       std::vector<double>     weights;        // master shape functions at the projection
     };
     /// One slave node's heat exchange over a step (gathered on every process).

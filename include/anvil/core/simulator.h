@@ -107,6 +107,7 @@ namespace anvil
     void open_histories();
     void write_histories(double time, unsigned int step);
     void write_fields(double time, unsigned int step);
+    void write_contact_fields(double time, unsigned int step);
     void evaluate_quantities();
     void write_summary(const std::string &status);
     void write_checkpoint(double time, double time_step);
@@ -153,7 +154,7 @@ namespace anvil
     std::vector<Probe>    probes;
     std::vector<Quantity> quantities;
     std::vector<std::pair<std::string, double>> qoi_values;
-    std::vector<std::pair<double, std::string>> pvd_records;
+    std::vector<std::pair<double, std::string>> pvd_records, contact_records;
     CsvHistory reactions_csv, probes_csv, energy_csv, newton_csv, thermal_csv, contact_csv;
     std::vector<std::pair<std::string, dealii::types::boundary_id>> reaction_boundaries;
 
