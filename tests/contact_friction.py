@@ -79,6 +79,27 @@ for cn in (1e3, 1e4, 1e5, 1e6, 1e7):
     check(newton <= 3, "c_N = %g: %.2f Newton iterations per step" % (cn, newton))
     prev = pen
 
+# A moving tool: a rigid plane (Motion = 0, -d t) presses the block down onto
+# rollers, frictionless, penalty per area c_N: p = E' (d - p/c_N)/H, i.e.
+# p = E' d / (H + E'/c_N) with E' = E/(1 - nu^2) (plane strain, free sides).
+E, nu, H, d, cN = 70000.0, 0.3, 1.0, 1e-3, 1e6
+Ep = E / (1 - nu * nu)
+out, s, _ = run("tests/contact_block.prm",
+                ["Contact/Tools=floor, press", "Contact/sliding/Slave=top", "Contact/sliding/Master=press",
+                 "Contact/sliding/Penalty per=area", "Contact/sliding/Penalty normal=%g" % cN,
+                 "Contact/sliding/Penalty tangent=0", "Contact/sliding/Friction coefficient=0",
+                 "Contact/press/Type=plane", "Contact/press/Point=0, 1", "Contact/press/Normal=0, -1",
+                 "Contact/press/Motion=0, -%g*t" % d,
+                 "Boundary conditions/Displacement=bottom: uy = 0; left: ux = 0",
+                 "Boundary conditions/Pressure=", "Time/End time=1", "Output/Probes=",
+                 "Output/Quantities of interest=N: contact(sliding, normal); R: reaction(bottom, y)"],
+                name="contact_friction_press")
+q = s["quantities_of_interest"]
+expected = Ep * d / (H + Ep / cN) * 1.0
+print("  moving plane: contact force %.6f N/mm, bottom reaction %.6f, closed form %.6f" % (q["N"], q["R"], expected))
+close(q["N"], expected, 2e-3, "moving tool: p w = E' d/(H + E'/c_N) (small strain, O(d/H) finite-strain terms)")
+close(q["R"], q["N"], 1e-9, "the supports carry the tool's force")
+
 # np = 1 and np = 2: the same contact forces.
 o1, _, _ = run("tests/contact_block.prm", ["Geometry/Blocks=block: 0, 0, 1, 1, 8, 8"], name="contact_friction_np1")
 o2, s2, _ = run("tests/contact_block.prm", ["Geometry/Blocks=block: 0, 0, 1, 1, 8, 8"], np=2, name="contact_friction_np2")
