@@ -63,9 +63,13 @@ close(c["sliding_tangential"][-1], 0.2 * p * w, 1e-9, "mu_s = 0.3, mu_d = 0.2: s
 # Penalty study: gap -> 0 as c_N grows, the force stays p w.
 print("  %10s %14s %14s %10s %8s" % ("c_N N/mm", "penetration mm", "N/node expected", "force", "Newton"))
 prev = None
+tops = []
 for cn in (1e3, 1e4, 1e5, 1e6, 1e7):
-    out, s, _ = run("tests/contact_block.prm", ["Contact/sliding/Penalty normal=%g" % cn, "Time/End time=1"],
+    out, s, _ = run("tests/contact_block.prm", ["Contact/sliding/Penalty normal=%g" % cn, "Time/End time=1",
+                                                "Output/Probes=top: 0.5, 1",
+                                                "Output/Quantities of interest=uy: probe(top, uy)"],
                     name="contact_friction_penalty_%g" % cn)
+    tops.append(s["quantities_of_interest"]["uy"])
     c = read_csv(out + "/contact.csv")
     pen = c["sliding_max_penetration"][-1]
     newton = s["newton_iterations"] / s["steps"]
@@ -78,6 +82,14 @@ for cn in (1e3, 1e4, 1e5, 1e6, 1e7):
         close(prev / pen, 10, 0.12, "penetration shrinks with 1/c_N")
     check(newton <= 3, "c_N = %g: %.2f Newton iterations per step" % (cn, newton))
     prev = pen
+
+# The answer converges as c_N grows: the top's settlement differs from the
+# stiffest run by ~ N_node/c_N.
+diffs = [abs(u - tops[-1]) for u in tops[:-1]]
+print("  top settlement uy: %s mm; differences to c_N = 1e7: %s" % (" ".join("%.8f" % u for u in tops),
+                                                                  " ".join("%.2e" % x for x in diffs)))
+check(all(diffs[i + 1] < 0.2 * diffs[i] for i in range(len(diffs) - 1)),
+      "the settlement converges as c_N grows (differences shrink ~10x per decade)")
 
 # A moving tool: a rigid plane (Motion = 0, -d t) presses the block down onto
 # rollers, frictionless, penalty per area c_N: p = E' (d - p/c_N)/H, i.e.

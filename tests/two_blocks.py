@@ -11,7 +11,7 @@
    and all of it equals the friction work (eq. 31-33).
 3. Steady conduction through two blocks pressed together (tests/contact_conduction.prm):
    interface temperatures against the series resistance L/k + 1/h + L/k with
-   h = h0 (p/H)^e (eq. 34), matching and non-matching meshes.
+   h = h0 (p/H)^e (eq. 34), matching and non-matching meshes, 2D and 3D.
 4. With Table 1's thermal expansion the thermoelastic heat is reported beside
    the contact heat, and the heat balance closes.
 5. np = 1 and np = 2: the same contact forces and temperatures.
@@ -66,6 +66,18 @@ for name, blocks, tol in (("matching", "lower: 0, 0, 1, 1, 4, 4; upper: 0, 1, 1,
           "%.5f / %.5f K)" % (name, h, q["T_lower"], q["T_upper"], T_l, T_u))
     close(q["T_lower"], T_l, 0, "%s: lower interface temperature (K)" % name, atol=tol)
     close(q["T_upper"], T_u, 0, "%s: upper interface temperature (K)" % name, atol=tol)
+
+# The same in 3D (node-to-facet, non-matching 3 x 3 / 4 x 4 facets).
+out, s, _ = run("tests/contact_conduction.prm",
+                ["Dimension=3", "Geometry/Blocks=lower: 0, 0, 0, 1, 1, 1, 3, 3, 3; upper: 0, 1, 0, 1, 2, 1, 4, 3, 4",
+                 "Boundary conditions/Displacement=lower.bottom: uy = 0; lower.left: ux = 0; upper.left: ux = 0; "
+                 "lower.front: uz = 0; upper.front: uz = 0",
+                 "Output/Probes=lower_surface: 0.5, 0.9999999, 0.5; upper_surface: 0.5, 1.0000001, 0.5"],
+                name="contact_conduction_3d")
+q = s["quantities_of_interest"]
+print("  steady conduction, 3D non-matching facets: interface %.5f / %.5f K" % (q["T_lower"], q["T_upper"]))
+close(q["T_lower"], T_l, 0, "3D: lower interface temperature (K)", atol=0.05)
+close(q["T_upper"], T_u, 0, "3D: upper interface temperature (K)", atol=0.05)
 
 # 4. Table 1's thermal expansion: the thermoelastic heat, reported separately.
 beta = ["Bodies/%s/Material/Elasticity/Thermal expansion=23.86e-6" % b for b in ("upper", "lower")]
