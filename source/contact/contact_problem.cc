@@ -38,10 +38,11 @@ namespace anvil
         prm.declare_entry("Master", "", Patterns::Anything(),
                           "The boundary whose faces are the masters, or the name of a rigid tool "
                           "in Contact/Tools.");
-        prm.declare_entry("Two-pass", "false", Patterns::Bool(),
-                          "Both surfaces act as slave and master (the seed's two-pass approach), "
-                          "each pass with half the penalties; false: one pass, Slave nodes on "
-                          "Master faces. Not for a tool.");
+        prm.declare_entry("Two-pass", "automatic", Patterns::Selection("automatic|true|false"),
+                          "true: both surfaces act as slave and master (the seed's two-pass "
+                          "approach), each pass with half the penalties; false: one pass, Slave "
+                          "nodes on Master faces; automatic: two passes between two boundaries, "
+                          "one against a tool.");
         prm.declare_entry("Penalty normal", "0", Patterns::Double(0),
                           "c_N of t_N = c_N <-g_N> (eq. 27): N/mm per node, or N/mm^3 per unit "
                           "area (Penalty per = area). Must be > 0.");
@@ -124,7 +125,8 @@ namespace anvil
             if (p.master == p.slave)
               scene.fail(path + "Master", "is the Slave boundary: self-contact is not supported");
           }
-        p.two_pass = prm.get_bool("Two-pass");
+        const std::string passes = prm.get("Two-pass");
+        p.two_pass = passes == "true" || (passes == "automatic" && p.tool < 0);
         if (p.two_pass && p.tool >= 0)
           scene.fail(path + "Two-pass", "is true but the Master is a rigid tool (a tool has no nodes)");
         p.per_area                = prm.get("Penalty per") == "area";
@@ -571,7 +573,7 @@ namespace anvil
         o.position = trial.position;
         if (trial.normal_force > 0 && trial.area > 0)
           {
-            o.pressure    = trial.normal_force / trial.area;
+            o.pressure    = trial.normal_force / ((pair.two_pass ? 0.5 : 1.) * trial.area);
             o.conductance = pair.conductance > 0 ?
                               pair.conductance * std::pow(o.pressure / pair.hardness, pair.exponent) :
                               0.;
@@ -717,9 +719,12 @@ namespace anvil
         const Pair &pair        = pairs[p];
         if (!(trial.normal_force > 0) || !(trial.area > 0))
           continue;
-        const double pressure = trial.normal_force / trial.area; // eq. 34
+        // Two-pass: each pass carries half the contact force, so the pressure
+        // is twice its share and each pass conducts through half the area.
+        const double half     = pair.two_pass ? 0.5 : 1.;
+        const double pressure = trial.normal_force / (half * trial.area); // eq. 34
         const double h        = pair.conductance > 0 ?
-                                  pair.conductance * std::pow(pressure / pair.hardness, pair.exponent) :
+                                  half * pair.conductance * std::pow(pressure / pair.hardness, pair.exponent) :
                                   0.;
         const double power    = trial.work / dt; // eq. 31: zero while sticking
         if (h == 0 && power == 0)
