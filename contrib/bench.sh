@@ -97,3 +97,78 @@ print("columns: heat/mech = sum thermal_wall_time / sum mechanics_wall_time (the
 print("         ARKode/st, Newton/st, stagger/st per mechanical step; T max: largest cell-mean temperature;")
 print("         T neck: nodal temperature on the axis at mid-length; neck: final neck radius")
 PY
+# Contact search and evaluation, about 10^4 slave nodes: a strip of 10000 x 2
+# cells (10001 slave nodes on its bottom) on a strip of 9999 x 2 cells
+# (contrib/bench/contact_strip.prm; --small: 1000 cells).
+#  1. contrib/bench/contact_search.cc, built out of tree against this build,
+#     times the pieces of ContactProblem (setup, begin_step, couplings,
+#     assemble with tangent / residual only) for one-pass and two-pass
+#     node-to-segment and for the strip on a rigid plane, outside Newton.
+#  2. The whole program on the same scene, one-pass, and on a copy without the
+#     Contact section (the upper strip's bottom held instead): Mechanics:
+#     assembly / residual per call, the difference being the contact's share
+#     in situ (search, elements and their scatter into the matrix), and the
+#     setup and wall times.
+ncs=10000
+if [ "${1:-}" = "--small" ]; then ncs=1000; fi
+cs_length=$((ncs / 100))   # square cells of 0.01 mm
+cs_scene="$ANVIL_ROOT/contrib/bench/contact_strip.prm"
+cs_sets=(--set "Geometry/Blocks=lower: 0, 0, $cs_length, 0.02, $((ncs - 1)), 2; upper: 0, 0.02, $cs_length, 0.04, $ncs, 2")
+cs_build="$out/contact_search_build"
+if cmake -S "$ANVIL_ROOT/contrib/bench/contact_search" -B "$cs_build" -Danvil_DIR="$ANVIL_BUILD" \
+     -DCMAKE_BUILD_TYPE=Release > "$out/contact_search_configure.log" 2>&1 &&
+   cmake --build "$cs_build" > "$out/contact_search_build.log" 2>&1; then
+  for variant in "" "Contact/strip/Two-pass=true" "Contact/strip/Master=floor"; do
+    extra=()
+    [ -n "$variant" ] && extra=(--set "$variant")
+    "$cs_build/contact_search" "$cs_scene" "${cs_sets[@]}" "${extra[@]}" \
+      || echo "contact_search ${variant:-one-pass}: exited with status $?"
+  done
+else
+  echo "contact_search: the build failed, see $out/contact_search_configure.log and $out/contact_search_build.log"
+fi
+sed '/^subsection Contact/,/^end/d' "$cs_scene" > "$out/contact_strip_without_contact.prm"
+"$ANVIL_BUILD/anvil" "$cs_scene" "${cs_sets[@]}" --set "Output/Directory=$out/contact_strip" \
+  --set "Output/Verbosity=normal" \
+  --set "Boundary conditions/Displacement=lower.bottom: ux = 0, uy = 0; upper.left: ux = 0" \
+  > "$out/contact_strip.log" 2>&1 || echo "contact_strip.prm: anvil exited with status $?"
+"$ANVIL_BUILD/anvil" "$out/contact_strip_without_contact.prm" "${cs_sets[@]}" \
+  --set "Output/Directory=$out/contact_strip_without_contact" --set "Output/Verbosity=normal" \
+  --set "Boundary conditions/Displacement=lower.bottom: ux = 0, uy = 0; upper.bottom: ux = 0, uy = 0" \
+  > "$out/contact_strip_without_contact.log" 2>&1 || echo "contact_strip (without contact): anvil exited with status $?"
+python3 - "$out" <<'PY'
+import json, os, re, sys
+out = sys.argv[1]
+def timers(case):
+    """Per section (calls, seconds) from the timer table at the end of the log."""
+    t = {}
+    for line in open("%s/%s.log" % (out, case)):
+        m = re.match(r"\|\s*(.+?)\s*\|\s*(\d+)\s*\|\s*([0-9.e+-]+)s\s*\|", line)
+        if m:
+            t[m.group(1)] = (int(m.group(2)), float(m.group(3)))
+    return t
+cases = ("contact_strip", "contact_strip_without_contact")
+if not all(os.path.exists("%s/%s/summary.json" % (out, c)) for c in cases):
+    print("contact strip, whole program: a run failed (see %s/contact_strip*.log)" % out)
+    sys.exit(0)
+s = {c: json.load(open("%s/%s/summary.json" % (out, c))) for c in cases}
+t = {c: timers(c) for c in cases}
+print("contact strip, whole program, one process (%d cells, %d DoFs):" % (s[cases[0]]["cells"], s[cases[0]]["dofs"]))
+print("  %-28s %14s %14s %14s" % ("s per call", "with contact", "without", "contact share"))
+for sec in ("Mechanics: assembly", "Mechanics: residual"):
+    a, b = t[cases[0]].get(sec), t[cases[1]].get(sec)
+    if a and b:
+        pa, pb = a[1] / a[0], b[1] / b[0]
+        print("  %-28s %14.4f %14.4f %14.4f" % (sec, pa, pb, pa - pb))
+for sec in ("Mechanics: setup",):
+    a, b = t[cases[0]].get(sec), t[cases[1]].get(sec)
+    if a and b:
+        print("  %-28s %14.4f %14.4f %14.4f" % (sec + " (s)", a[1], b[1], a[1] - b[1]))
+outside = {c: s[c]["wall_time"] - sum(v[1] for v in t[c].values()) for c in cases}
+print("  %-28s %14.4f %14.4f %14.4f" % ("outside the timers (s)", outside[cases[0]], outside[cases[1]],
+                                        outside[cases[0]] - outside[cases[1]]))
+print("  %-28s %14.4f %14.4f" % ("wall time (s)", s[cases[0]]["wall_time"], s[cases[1]]["wall_time"]))
+print("  steps %d / %d, Newton iterations %d / %d" % (s[cases[0]]["steps"], s[cases[1]]["steps"],
+      s[cases[0]]["newton_iterations"], s[cases[1]]["newton_iterations"]))
+print("  (begin_step, the tributary areas and the candidate search of each step, runs outside the timers)")
+PY

@@ -13,23 +13,24 @@ along the lower/upper interface; one-pass and two-pass):
  - the stress: the cell averages of sigma_yy, read by probes at every cell
    centre, per body, as max |sigma_yy + p| / p; the quantities of interest
    max(stress_yy) and min(stress_yy) (over both bodies: max/min take no body
-   argument) agree with the probes; mean(stress_yy, body) is printed;
+   argument) agree with the probes; mean(stress_yy, body) = -p to 2e-4 p
+   (equilibrium fixes the volume mean even where the stresses are wrong);
  - matching meshes pass the patch test to round-off, one-pass and two-pass;
  - non-matching one-pass node-to-segment does NOT pass it (the known
    defect: the slave nodes cannot transmit a uniform traction onto master
    segments they do not match): errors of 4 to 14 % of p at the cells along
-   the interface, independent of the penalty (a consistency error, not a
-   penalty error); asserted below 20 %;
- - non-matching two-pass: well below 1 % at c_N = 1e8 N/mm^3 and decreasing
-   as the penalty grows (~ c_N^-0.6 measured), so better than one pass;
+   the interface, tending to a limit as the penalty grows (a consistency
+   error, not a penalty error); asserted below 20 %;
+ - non-matching two-pass: 8 % at c_N = 1e5 N/mm^3, below 1 % at 1e8,
+   0.1 % at 1e9: it passes the test in the limit of the penalty, and is
+   better than one pass from c_N = 1e7 (not at 1e5 on the 5/7 mesh);
  - mpirun -np 2 gives the same contact history to 1e-8.
 
-Known limitation (not asserted): with the two surfaces ending at the same
-x (the aligned ends of a patch test), the end slave nodes project onto the
-master's end vertex with xi = g_N sin(theta)/L off by more than the 1e-10
-tolerance for small penalties, flip in and out of contact and Newton fails
-for c_N <= 1e7 N/mm^3 on non-matching meshes (with a master longer than the
-slave all penalties converge). The scene therefore uses c_N = 1e8.
+The penalty study (c_N = 1e5 ... 1e9 N/mm^3) also checks that Newton converges
+with the aligned ends of the two surfaces (the end slave nodes project onto
+the master's end vertex): with a projection tolerance of 1e-10 on the master
+parameter the end nodes flipped in and out of contact and Newton failed for
+c_N <= 1e7 on non-matching meshes; the tolerance is now 1e-3.
 """
 from anvil_test import run, read_csv, check, close, finish
 
@@ -146,32 +147,50 @@ for nl, nu in ((5, 7), (7, 5)):
     check(two["err"] < one["err"] / 5, "%d/%d: two-pass (%.2e) is better than one-pass (%.2e) by %.0fx"
           % (nl, nu, two["err"], one["err"], one["err"] / two["err"]))
 
-# Penalty study on the non-matching meshes: the one-pass error does not go
-# away with the penalty, the two-pass error does. Above ~1e9 the residual's
-# round-off floor (~ c_N h eps) exceeds Newton's tolerance (c_N = 1e10 fails).
-print("  penalty study (the force tolerance grows with c_N: the residual's round-off floor is ~ c_N h eps)")
+# Penalty study on the non-matching meshes, c_N = 1e5 ... 1e9 N/mm^3 (E/h of
+# the interface cells is 4e5 to 5e5 N/mm^3). Above ~1e9 the residual's
+# round-off floor (~ c_N h eps) exceeds Newton's tolerance (1e10 fails).
+print("  penalty study (the force tolerances grow with c_N above 1e8: the residual's round-off floor is ~ c_N h eps)")
+PENALTIES = (1e5, 1e6, 1e7, 1e8, 1e9)
+errors = {}
 for nl, nu in ((5, 7), (7, 5)):
     for two_pass in (False, True):
+        what = label(nl, nu, two_pass)
         errs = []
-        for cn in (1e8, 3e8, 1e9):
+        for cn in PENALTIES:
             r = results[(nl, nu, two_pass)] if cn == CN else patch(nl, nu, two_pass, cn)
             if cn != CN:
                 show(nl, nu, two_pass, cn, r)
-            check(r["N_err"] <= 1e-9 * cn / 1e8, "%s, c_N = %g: sum t_N = p w (error %.2e p w)"
-                  % (label(nl, nu, two_pass), cn, r["N_err"]))
+            tol = 1e-9 * max(1, cn / 1e8)
+            if two_pass:
+                check(r["N_err"] <= tol, "%s, c_N = %g: sum t_N = p w (error %.2e p w)" % (what, cn, r["N_err"]))
+            else:
+                # One pass: the vertical force is p w exactly (equilibrium of the
+                # upper block); sum t_N exceeds it by sum t_N (1 - n_y), the tilt
+                # of the master segments (measured <= 1.6e-9 p w, at c_N = 1e5).
+                check(r["Fy_err"] <= tol and r["N_err"] <= 5 * tol,
+                      "%s, c_N = %g: vertical contact force = p w (error %.2e p w), sum t_N = p w "
+                      "(error %.2e p w)" % (what, cn, r["Fy_err"], r["N_err"]))
             errs.append(r["err"])
-        what = label(nl, nu, two_pass)
+        errors[(nl, nu, two_pass)] = errs
+        listing = ", ".join("%.2e" % e for e in errs)
         if two_pass:
-            # measured: 1e8 -> 1e9 divides the error by 3.6 to 4.9
-            check(errs[0] > errs[1] > errs[2] and errs[0] / errs[2] > 2.5,
-                  "%s: the error falls as the penalty grows: %s (1e8 -> 1e9: / %.1f, ~ c_N^-%.2f)"
-                  % (what, ", ".join("%.2e" % e for e in errs), errs[0] / errs[2],
-                     __import__("math").log10(errs[0] / errs[2])))
+            # measured: 7.9e-2 .. 1.1e-3 (5/7), 7.7e-2 .. 1.2e-3 (7/5), monotone
+            check(all(a > b for a, b in zip(errs, errs[1:])) and errs[0] / errs[-1] > 20,
+                  "%s: the error falls as the penalty grows: %s (1e5 -> 1e9: / %.0f)"
+                  % (what, listing, errs[0] / errs[-1]))
         else:
-            # measured: the one-pass error changes by < 0.3 % from 1e8 to 1e9
-            check(abs(errs[2] / errs[0] - 1) < 0.02,
-                  "%s: the error is independent of the penalty: %s (a consistency error of one-pass "
-                  "node-to-segment, not a penalty error)" % (what, ", ".join("%.4e" % e for e in errs)))
+            # measured: 5.0 % to 5.1 % (5/7), 13.4 % to 13.5 % (7/5) from 1e7 to 1e9
+            check(max(errs) < 0.2 and (errs[-1] < 1e-6 or abs(errs[-1] / errs[2] - 1) < 0.05),
+                  "%s: the error tends to a limit (%.1f %% of p) instead of 0: %s (a consistency "
+                  "error of one-pass node-to-segment, not a penalty error)"
+                  % (what, 100 * errs[-1], listing))
+    one, two = errors[(nl, nu, False)], errors[(nl, nu, True)]
+    print("  %d/%d: two-pass error / one-pass error per c_N: %s" % (
+        nl, nu, ", ".join("%g: %.2f" % (cn, b / a) for cn, a, b in zip(PENALTIES, one, two))))
+    # Two passes are better from c_N = 1e7 (at 1e5 the 5/7 one-pass is better).
+    check(all(b < a for a, b in list(zip(one, two))[2:]),
+          "%d/%d: two-pass is better than one-pass for c_N >= 1e7" % (nl, nu))
 
 # np = 1 and np = 2: the same contact history.
 for two_pass in (False, True):

@@ -15,8 +15,9 @@
 //   assemble     search (R-tree of the master faces) + elements with their
 //                tangents (per Newton iteration), and residual only
 // Each is timed (wall, max over the processes) and also given per 10^4 slave
-// nodes. A checksum of what the elements add is printed so that nothing is
-// optimised away. Build it out of tree against anvil's build directory:
+// nodes. The number of elements and the sum of |r_slave| (about sum t_N) of
+// an evaluation are printed: they should not depend on the processes.
+// Build it out of tree against anvil's build directory:
 //   cmake -S contrib/bench/contact_search -B BUILD -Danvil_DIR=<anvil build>
 // (contrib/bench/contact_search/CMakeLists.txt; contrib/bench.sh does it).
 #include <deal.II/base/mpi.h>

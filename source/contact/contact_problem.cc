@@ -107,10 +107,16 @@ namespace anvil
         if (p.slave_name.empty())
           scene.fail(path + "Slave", "is empty: expected the name of a boundary (" +
                                        geometry.list_boundary_names() + ")");
+        if (geometry.boundary_names().count(p.slave_name) == 0)
+          scene.fail(path + "Slave", "= '" + p.slave_name + "' is not a boundary of the mesh (" +
+                                       geometry.list_boundary_names() + ")");
         p.slave = geometry.boundary_id(p.slave_name, scene.where(path + "Slave"));
         for (unsigned int k = 0; k < tools.size(); ++k)
           if (tools[k]->name == p.master_name)
             p.tool = k;
+        if (p.tool >= 0 && geometry.boundary_names().count(p.master_name))
+          scene.fail(path + "Master", "= '" + p.master_name +
+                                        "' names both a tool and a boundary: rename the tool");
         if (p.tool < 0)
           {
             if (p.master_name.empty())
@@ -278,6 +284,10 @@ namespace anvil
             }
         faces.push_back(face);
       }
+    node_faces.assign(node_reference.size(), {});
+    for (unsigned int f = 0; f < faces.size(); ++f)
+      for (const auto n : faces[f].nodes)
+        node_faces[n].push_back(f);
     for (auto &[b, s] : surfaces)
       {
         std::sort(s.nodes.begin(), s.nodes.end());
@@ -315,10 +325,10 @@ namespace anvil
     // 2D: half of each adjacent segment (times 2πr when axisymmetric);
     // 3D: a quarter of each adjacent facet (diagonals' cross product / 2).
     double area = 0;
-    for (const auto f : surface.faces)
+    for (const auto f : node_faces[node])
       {
         const auto &nodes = faces[f].nodes;
-        if (std::find(nodes.begin(), nodes.end(), node) == nodes.end())
+        if (faces[f].boundary != faces[surface.faces.front()].boundary)
           continue;
         if constexpr (dim == 2)
           area += 0.5 * x[nodes[0]].distance(x[nodes[1]]);
@@ -469,7 +479,7 @@ namespace anvil
                             xm_old.push_back(x_old[m]);
                           }
                         auto r = contact::node_to_segment(x[n], x_old[n], xm, xm_old, state, law,
-                                                          with_matrix);
+                                                          false);
                         if (!r.projection_inside)
                           continue;
                         if (best_face < 0 || std::abs(r.gap) < std::abs(result.gap))
@@ -477,6 +487,17 @@ namespace anvil
                             result    = std::move(r);
                             best_face = f;
                           }
+                      }
+                    if (with_matrix && best_face >= 0 && result.in_contact)
+                      {
+                        // The tangent for the face kept only.
+                        std::vector<Point<dim>> xm, xm_old;
+                        for (const auto m : faces[best_face].nodes)
+                          {
+                            xm.push_back(x[m]);
+                            xm_old.push_back(x_old[m]);
+                          }
+                        result = contact::node_to_segment(x[n], x_old[n], xm, xm_old, state, law, true);
                       }
                     if (best_face >= 0 && result.in_contact)
                       {
@@ -533,8 +554,11 @@ namespace anvil
         double *s            = &sums[p * w];
         if (trial.normal_force > 0)
           {
+            // The reverse pass of a two-pass pair acts on the Master body: its
+            // reaction is what the Slave body feels.
+            const double sign = std::get<1>(key) == 0 ? 1. : -1.;
             for (unsigned int d = 0; d < dim; ++d)
-              s[d] += trial.force_on_slave[d];
+              s[d] += sign * trial.force_on_slave[d];
             s[dim] += trial.normal_force;
             s[dim + 1] += trial.tangential_force;
             s[dim + 2] += trial.work;

@@ -256,9 +256,12 @@ namespace anvil
     if (contact)
       {
         groups = contact->couplings();
+        std::vector<types::global_dof_index> extra;
         for (const auto &g : groups)
-          for (const auto i : g)
-            rows.add_index(i);
+          extra.insert(extra.end(), g.begin(), g.end());
+        std::sort(extra.begin(), extra.end());
+        extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+        rows.add_indices(extra.begin(), extra.end());
         rows.compress();
       }
     DynamicSparsityPattern dsp(rows);

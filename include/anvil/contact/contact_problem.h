@@ -80,7 +80,7 @@ namespace anvil
     /// The totals of one pair over the committed steps (or at the last commit).
     struct PairTotals
     {
-      dealii::Tensor<1, dim> force;                 // total contact force on the slave side, N (last commit)
+      dealii::Tensor<1, dim> force;                 // contact force on the Slave body, N (last commit; with two passes the reverse pass's reaction)
       double                 normal = 0, tangential = 0; // sums of t_N and |t_T| over the nodes, N
       double                 friction_work   = 0;            // accumulated, N mm
       double                 max_penetration = 0;            // at the last commit, mm
@@ -230,6 +230,7 @@ namespace anvil
     std::vector<bool>                                            node_owned; // x dof locally owned
     std::vector<unsigned int>                                    node_body;  // material id
     std::vector<Face>                                            faces;
+    std::vector<std::vector<unsigned int>>                       node_faces; // faces of each node
     std::map<dealii::types::boundary_id, Surface>                surfaces;
     double                                                       largest_face = 0;
 
