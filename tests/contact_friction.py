@@ -112,6 +112,48 @@ print("  moving plane: contact force %.6f N/mm, bottom reaction %.6f, closed for
 close(q["N"], expected, 2e-3, "moving tool: p w = E' d/(H + E'/c_N) (small strain, O(d/H) finite-strain terms)")
 close(q["R"], q["N"], 1e-9, "the supports carry the tool's force")
 
+# Heat with a tool (eq. 30-34): (a) steady conduction from the floor at
+# 400 K through the contact conductance into the block, whose top is held at
+# 300 K: q = (400 - 300)/(1/h + L/k), h = h0 (p/H)^e; (b) an insulated block
+# sliding on the floor keeps the relative-effusivity share of the friction
+# work, the rest goes to the tool.
+heat = ["Physics/Coupling=isothermal split", "Heat/Initial temperature=300",
+        "Bodies/block/Material/Thermal/Conductivity=150",
+        "Contact/sliding/Thermal/Conductance=150", "Contact/sliding/Thermal/Hardness=932",
+        "Contact/sliding/Thermal/Exponent=0.95", "Contact/floor/Temperature=400", "Output/Probes=",
+        "Output/Quantities of interest=Tb: mean(temperature)"]
+# (frictionless, left side on rollers, penalty per area: the pressure, hence h,
+# is uniform; a per-node penalty stiffens the corners, which then carry more)
+out, s, _ = run("tests/contact_block.prm", heat + ["Heat/Boundary conditions/Temperature=top: 300",
+                                                   "Boundary conditions/Displacement=left: ux = 0",
+                                                   "Contact/sliding/Friction coefficient=0",
+                                                   "Contact/sliding/Penalty tangent=0",
+                                                   "Contact/sliding/Penalty per=area",
+                                                   "Contact/sliding/Penalty normal=1e7",
+                                                   "Time/End time=20", "Time/Maximum time step=2",
+                                                   "Output/Probes=b: 0.5, 0",
+                                                   "Output/Quantities of interest=Tb: probe(b, temperature)"],
+                name="contact_friction_tool_conduction")
+h = 150 * (10 / 932.0) ** 0.95
+qf = 100 / (1 / h + 1.0 / 150)
+print("  hot floor: block bottom %.5f K, series resistance %.5f K" % (s["quantities_of_interest"]["Tb"], 400 - qf / h))
+close(s["quantities_of_interest"]["Tb"], 400 - qf / h, 0, "steady conduction from a tool (K)", atol=1e-3)
+out, s, _ = run("tests/contact_block.prm", heat + ["Contact/floor/Temperature=300",
+                                                   "Contact/sliding/Thermal/Conductance=0",
+                                                   "Contact/sliding/Thermal/Relative effusivity=0.3"],
+                name="contact_friction_tool_heat")
+Wf = s["contact"]["sliding_friction_work"]
+print("  sliding on the floor: heat into the block %.6f mJ, friction work %.6f" % (s["heat"]["heat_content_change"], Wf))
+close(s["heat"]["heat_content_change"], 0.3 * Wf, 1e-8, "the block keeps 0.3 of the friction heat (insulated)")
+check(s["heat"]["balance_error"] < 1e-9, "heat balance closes (%.1e)" % s["heat"]["balance_error"])
+
+# Excessive penetration: a limit below what the penalty allows cuts the step
+# back, then stops the run (status 3) saying why.
+out, s, _ = run("tests/contact_block.prm", ["Contact/Maximum penetration=1e-6", "Time/Minimum time step=0.025"],
+                name="contact_friction_penetration", expect_status=3)
+check("penetration" in s["status"] and s["cut_backs"] > 0,
+      "excessive penetration is reported and cut back: " + s["status"])
+
 # np = 1 and np = 2: the same contact forces.
 o1, _, _ = run("tests/contact_block.prm", ["Geometry/Blocks=block: 0, 0, 1, 1, 8, 8"], name="contact_friction_np1")
 o2, s2, _ = run("tests/contact_block.prm", ["Geometry/Blocks=block: 0, 0, 1, 1, 8, 8"], np=2, name="contact_friction_np2")

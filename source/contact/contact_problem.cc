@@ -604,6 +604,9 @@ namespace anvil
           }
         o.gap            = trial.gap;
         o.slip           = trial.slip;
+        const auto q     = heat_flux.find({std::get<0>(key), std::get<2>(key)});
+        if (q != heat_flux.end() && trial.area > 0)
+          o.heat_flux = q->second / trial.area;
         o.friction_power = dt > 0 ? trial.work / dt : 0.;
         o.status         = trial.normal_force > 0 ? (trial.state.sliding ? 2 : 1) : 0;
         out.push_back(o);
@@ -846,6 +849,7 @@ namespace anvil
   {
     const auto To = gather_node_values(T_old), Tn = gather_node_values(T_new);
     double     into_bodies = 0;
+    heat_flux.clear();
     for (const auto &h : heat_elements)
       {
         auto master_T = [&](const std::vector<double> &T, const double t) {
@@ -858,6 +862,7 @@ namespace anvil
         };
         const double Q = 0.5 * h.hA *
                          ((To[h.slave] - master_T(To, t_old)) + (Tn[h.slave] - master_T(Tn, t_new)));
+        heat_flux[{h.pair, h.slave}] = Q; // for the fields: W, per node
         auto &totals = pair_totals[h.pair];
         totals.heat_exchanged += Q * dt;
         // Into the bodies: all of D for a deformable master, the slave's share

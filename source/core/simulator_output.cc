@@ -423,14 +423,14 @@ namespace anvil
   void Simulator<dim>::write_contact_fields(const double t, const unsigned int step)
   {
     // The slave nodes as a point cloud (fields/contact_<step>.vtu, contact.pvd):
-    // pressure, gap, slip, status, frictional power, conductance, pair.
+    // pressure, gap, slip, status, frictional power, conductance, heat flux, pair.
     std::vector<double> local;
     for (const auto &o : contact.node_outputs())
       {
         for (unsigned int d = 0; d < 3; ++d)
           local.push_back(d < dim ? o.position[d] : 0.);
         local.insert(local.end(), {o.pressure, o.gap, o.slip, double(o.status), o.friction_power,
-                                   o.conductance, double(o.pair)});
+                                   o.conductance, o.heat_flux, double(o.pair)});
       }
     const auto parts = Utilities::MPI::all_gather(mpi_communicator, local);
     if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
@@ -438,7 +438,7 @@ namespace anvil
     std::vector<double> all;
     for (const auto &part : parts)
       all.insert(all.end(), part.begin(), part.end());
-    const unsigned int width = 10, n = all.size() / width;
+    const unsigned int width = 11, n = all.size() / width;
     const std::string  name  = "contact_" + Utilities::int_to_string(step, 5) + ".vtu";
     std::ofstream      vtu(output_dir + "/fields/" + name);
     vtu << std::setprecision(10)
@@ -459,8 +459,8 @@ namespace anvil
       vtu << "1 "; // VTK_VERTEX
     vtu << "\n</DataArray>\n</Cells>\n<PointData>\n";
     const char *names[] = {"contact_pressure", "gap", "slip", "status", "frictional_power",
-                           "conductance", "pair"};
-    for (unsigned int f = 0; f < 7; ++f)
+                           "conductance", "contact_heat_flux", "pair"};
+    for (unsigned int f = 0; f < 8; ++f)
       {
         vtu << "<DataArray type=\"Float64\" Name=\"" << names[f] << "\" format=\"ascii\">\n";
         for (unsigned int i = 0; i < n; ++i)

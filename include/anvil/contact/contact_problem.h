@@ -168,6 +168,7 @@ namespace anvil
       double             gap = 0, slip = 0;  // mm (slip: this step's)
       double             friction_power = 0; // D = t_T . slip / dt, mW (per node)
       double             conductance = 0;    // h = h0 (p/H)^e, mW/(mm^2 K)
+      double             heat_flux   = 0;    // conducted from the slave to the master, mW/mm^2 (last step)
       int                status = 0;         // 0 open, 1 stick, 2 slip
       unsigned int       pair   = 0;
     };
@@ -255,5 +256,6 @@ namespace anvil
     std::vector<bool>                            node_thermal_owned;
     std::vector<HeatElement>                     heat_elements;
     double                                       heat_time = 0;
+    std::map<std::pair<unsigned int, unsigned int>, double> heat_flux; // (pair, slave) -> Q, mW
   };
 } // namespace anvil
