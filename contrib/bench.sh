@@ -172,3 +172,17 @@ print("  steps %d / %d, Newton iterations %d / %d" % (s[cases[0]]["steps"], s[ca
       s[cases[0]]["newton_iterations"], s[cases[1]]["newton_iterations"]))
 print("  (begin_step, the tributary areas and the candidate search of each step, runs outside the timers)")
 PY
+# The seed's two-block scene (prm/two_blocks.prm): wall time on one core
+# (target <= 2 s against the seed's 18.33 s of 2002), steps, Newton iterations.
+"$ANVIL_BUILD/anvil" "$ANVIL_ROOT/prm/two_blocks.prm" --set "Output/Directory=$out/two_blocks" \
+  --set "Output/Field interval=0" --set "Output/Verbosity=quiet" || echo "two_blocks.prm: anvil exited with status $?"
+python3 - "$out" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1] + "/two_blocks/summary.json"))
+q = s["quantities_of_interest"]
+print("two blocks (prm/two_blocks.prm), one process: %.2f s wall (seed 18.33 s), %d steps (seed 77), "
+      "%d Newton iterations (seed 217), %.2f per step, ARKode %.2f steps per step; dT %.4f / %.4f K "
+      "(analytic 1.2346 / 0.3086)" % (s["wall_time"], s["steps"], s["newton_iterations"],
+                                      s["newton_iterations"] / s["steps"], s["heat"]["arkode_steps_per_step"],
+                                      q["delta_T_upper"], q["delta_T_lower"]))
+PY
