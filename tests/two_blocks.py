@@ -41,6 +41,39 @@ close(heat["contact_heat"], c["interface_friction_work"], 1e-9, "all the frictio
 close(heat["heat_content_change"], heat["contact_heat"] + heat["thermoelastic_heat"], 1e-9,
       "heat balance: content change = contact heat + thermoelastic heat")
 
+# Newton with the exact contact tangents: the order of the last contraction
+# above the round-off floor, in every step that has one (quadratic: ~2).
+import math
+nc = read_csv(out + "/newton.csv")
+steps = {}
+for st, r, conv in zip(nc["step"], nc["residual"], nc["converged"]):
+    if conv:
+        steps.setdefault(st, []).append(r)
+orders = []
+floor = 1e-8  # N: below, the residual is round-off (the scene's tolerance is ~1e-10 relative)
+for r in steps.values():
+    triples = [(r[k - 1], r[k], r[k + 1]) for k in range(1, len(r) - 1)
+               if r[k + 1] > floor and r[k - 1] > r[k] > r[k + 1] and r[k] < 0.1 * r[k - 1]]
+    if triples:
+        a, b, c_ = triples[-1]
+        orders.append(math.log(c_ / b) / math.log(b / a))
+orders.sort()
+median = orders[len(orders) // 2]
+print("  Newton: %d steps measured, median order of the last contraction %.2f" % (len(orders), median))
+check(median > 1.5, "Newton converges quadratically with contact and friction (median order %.2f)" % median)
+
+# The assembled tangent with the contact elements against central finite
+# differences of the assembled residual (Mechanics/Newton/Check tangent),
+# over the pressing and the start of the slide. The first check sits on the
+# kink where the nodes touch (g = 0), where the residual has no derivative.
+import re
+_, _, stdout = run("prm/two_blocks.prm", ["Output/Field interval=0", "Time/End time=5e-4",
+                                          "Mechanics/Newton/Check tangent=true"], name="two_blocks_tangent")
+errors = [float(m.group(1)) for m in re.finditer(r"tangent check: \|K du - FD\| / \|K du\| = (\S+)", stdout)]
+print("  tangent vs FD with contact: %d checks, first %.1e (contact onset), then at most %.1e"
+      % (len(errors), errors[0], max(errors[1:])))
+check(len(errors) > 5 and max(errors[1:]) < 1e-7, "the contact tangent is exact (%.1e)" % max(errors[1:]))
+
 # 2. The split of the frictional heat (no conduction across the interface).
 share = 0.3
 out, s, _ = run("prm/two_blocks.prm", ["Output/Field interval=0", "Contact/interface/Thermal/Conductance=0",
