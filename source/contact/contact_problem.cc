@@ -430,7 +430,7 @@ namespace anvil
   template <int dim>
   bool ContactProblem<dim>::assemble(const Vector &u, const bool with_matrix, const Adder &add)
   {
-    std::vector<Point<dim>> x;
+    std::vector<Point<dim>> &x = x_last;
     gather_positions(u, x);
     bool   missing     = false;
     double penetration = 0;
@@ -531,6 +531,7 @@ namespace anvil
                 trial.gap          = result.gap;
                 trial.slip         = result.slip_increment.norm();
                 trial.work         = result.frictional_work;
+                trial.normal       = result.normal;
                 trial.tangential_force = result.tangential_force.norm();
                 trial.force_on_slave = result.normal_force * result.normal - result.tangential_force;
                 if (!missing)
@@ -668,6 +669,46 @@ namespace anvil
   }
 
   template <int dim>
+  double ContactProblem<dim>::characteristic_area(const unsigned int node, const types::boundary_id surface,
+                                                  const Tensor<1, dim> &normal) const
+  {
+    const auto &x    = x_last;
+    double      area = 0;
+    if constexpr (dim == 2)
+      {
+        // The faces run consistently along the boundary (x₀ → x₁); t ⟂ n is
+        // oriented along the node's two faces together, so that a face that
+        // folds back (a corner of the slave body) projects negatively and
+        // counts zero: A = (max(L₁, 0) + max(L₂, 0))/2.
+        Tensor<1, dim> t, sum;
+        t[0] = -normal[1];
+        t[1] = normal[0];
+        for (const auto f : node_faces[node])
+          if (faces[f].boundary == surface)
+            sum += x[faces[f].nodes[1]] - x[faces[f].nodes[0]];
+        if (sum * t < 0)
+          t *= -1;
+        for (const auto f : node_faces[node])
+          if (faces[f].boundary == surface)
+            area += 0.5 * std::max(0., (x[faces[f].nodes[1]] - x[faces[f].nodes[0]]) * t);
+      }
+    else
+      for (const auto f : node_faces[node])
+        if (faces[f].boundary == surface)
+          {
+            // A quarter of each facet projected on the master's tangent plane,
+            // a facet turned away counting zero.
+            const auto          &nodes = faces[f].nodes;
+            const Tensor<1, dim> d1 = x[nodes[3]] - x[nodes[0]], d2 = x[nodes[2]] - x[nodes[1]];
+            const Tensor<1, dim> facet = 0.5 * cross_product_3d(d1, d2); // along the facet's outward normal
+            area += 0.25 * std::max(0., -(facet * normal));              // the master normal faces the slave
+          }
+    if (axisymmetric)
+      area *= 2 * numbers::PI * x[node][0];
+    return area;
+  }
+
+  template <int dim>
   bool ContactProblem<dim>::has_heat() const
   {
     for (const auto &p : pairs)
@@ -748,15 +789,19 @@ namespace anvil
           continue;
         // Two-pass: each pass carries half the contact force, so the pressure
         // is twice its share and each pass conducts through half the area.
-        const double half     = pair.two_pass ? 0.5 : 1.;
-        const double pressure = trial.normal_force / (half * trial.area); // eq. 34
+        const double half = pair.two_pass ? 0.5 : 1.;
+        const double area =
+          characteristic_area(n, pass == 0 ? pair.slave : pair.master, trial.normal);
+        if (!(area > 0))
+          continue;
+        const double pressure = trial.normal_force / (half * area); // eq. 34
         const double h        = pair.conductance > 0 ?
                                   half * pair.conductance * std::pow(pressure / pair.hardness, pair.exponent) :
                                   0.;
         const double power    = trial.work / dt; // eq. 31: zero while sticking
         if (h == 0 && power == 0)
           continue;
-        local.insert(local.end(), {double(p), double(n), h * trial.area, power,
+        local.insert(local.end(), {double(p), double(n), h * area, power,
                                    pass == 0 ? pair.slave_share : 1 - pair.slave_share,
                                    double(pair.tool)});
         const auto &master = trial.face >= 0 ? faces[trial.face].nodes : std::vector<unsigned int>();

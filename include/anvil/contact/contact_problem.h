@@ -198,6 +198,7 @@ namespace anvil
       dealii::Tensor<1, dim>  force_on_slave; // normal + tangential, N
       int                     face = -1;      // master face (deformable master)
       dealii::Point<dim>      position;       // current slave position
+      dealii::Tensor<1, dim>  normal;         // master normal at the projection
       std::vector<double>     weights;        // master shape functions at the projection
     };
     /// One slave node's heat exchange over a step (gathered on every process).
@@ -210,6 +211,12 @@ namespace anvil
       double       hA = 0, power = 0, share = 0.5; // mW/K, mW, slave share of the power
     };
     std::vector<double> gather_node_values(const Vector &v) const;
+    /// The seed's characteristic area of a slave node (§3.1, Fig. 2): (L₁ + L₂)/2 with
+    /// L₁, L₂ the projections of its two slave segments on the master's tangent,
+    /// each clamped at zero (3D: its facets' quarters projected on the tangent plane).
+    double characteristic_area(unsigned int node, dealii::types::boundary_id surface,
+                               const dealii::Tensor<1, dim> &normal) const;
+    std::vector<dealii::Point<dim>> x_last; // surface nodes at the last assemble()
 
     void   gather_positions(const Vector &u_ghosted, std::vector<dealii::Point<dim>> &x) const;
     double tributary_area(unsigned int node, const Surface &surface,
