@@ -222,7 +222,30 @@ namespace anvil
 
     previous_time_step = 0;
     previous_increment.reinit(locally_owned_dofs, mpi_communicator);
-    mesh_diameter = GridTools::diameter(triangulation);
+    {
+      // The diagonal of the mesh's bounding box: a length scale for the
+      // round-off floor of the Newton test (GridTools::diameter compares all
+      // pairs of vertices, O(n²)).
+      Point<dim> lo, hi;
+      for (unsigned int d = 0; d < dim; ++d)
+        lo[d] = std::numeric_limits<double>::max(), hi[d] = -std::numeric_limits<double>::max();
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int v : cell->vertex_indices())
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                lo[d] = std::min(lo[d], cell->vertex(v)[d]);
+                hi[d] = std::max(hi[d], cell->vertex(v)[d]);
+              }
+      double diagonal = 0;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          const double l = Utilities::MPI::max(hi[d], mpi_communicator) +
+                           Utilities::MPI::max(-lo[d], mpi_communicator);
+          diagonal += l * l;
+        }
+      mesh_diameter = std::sqrt(diagonal);
+    }
     for (auto *v : {&system_rhs, &internal_force, &internal_force_old, &external_force,
                     &external_force_old, &reaction_force, &reaction_force_old, &owned_solution,
                     &owned_old_solution, &velocity_old, &acceleration_old, &static_residual_old,
