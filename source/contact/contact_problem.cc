@@ -303,6 +303,23 @@ namespace anvil
   }
 
   template <int dim>
+  void ContactProblem<dim>::set_constrained(
+    const std::function<bool(types::global_dof_index)> &owned_and_constrained)
+  {
+    std::vector<double> flags(node_dofs.size() * dim, 0.);
+    for (unsigned int n = 0; n < node_dofs.size(); ++n)
+      for (unsigned int c = 0; c < dim; ++c)
+        if (owned_and_constrained(node_dofs[n][c]))
+          flags[n * dim + c] = 1;
+    Utilities::MPI::sum(flags, mpi_communicator, flags);
+    constrained.clear();
+    for (unsigned int n = 0; n < node_dofs.size(); ++n)
+      for (unsigned int c = 0; c < dim; ++c)
+        if (flags[n * dim + c] > 0)
+          constrained.insert(node_dofs[n][c]);
+  }
+
+  template <int dim>
   void ContactProblem<dim>::gather_positions(const Vector &u, std::vector<Point<dim>> &x) const
   {
     std::vector<double> values(node_reference.size() * dim, 0.);

@@ -215,6 +215,9 @@ namespace anvil
     if (contact)
       {
         contact->setup(dof_handler, axisymmetric);
+        contact->set_constrained([this](const types::global_dof_index i) {
+          return locally_owned_dofs.is_element(i) && constraints.is_constrained(i);
+        });
         TrilinosWrappers::MPI::Vector zero(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
         contact->begin_step(0, 0, zero);
       }

@@ -107,6 +107,14 @@ namespace anvil
 
     /// Gather the surfaces (collective). @p axisymmetric: areas carry 2πr.
     void setup(const dealii::DoFHandler<dim> &dof_handler, bool axisymmetric);
+    /**
+     * Record which surface dofs are constrained (Dirichlet, hanging), as the
+     * owners know them (collective): a process adding an element whose
+     * master node it does not even see as a ghost must leave such dofs out.
+     */
+    void set_constrained(const std::function<bool(dealii::types::global_dof_index)> &owned_and_constrained);
+    /// Whether a surface dof is constrained (false for dofs not on a contact surface).
+    bool is_constrained(dealii::types::global_dof_index i) const { return constrained.count(i) > 0; }
 
     /// The step [t_old, t_new] about to be solved; @p u_old the committed displacement.
     void begin_step(double t_old, double t_new, const Vector &u_old_ghosted);
@@ -236,6 +244,7 @@ namespace anvil
     std::vector<dealii::Point<dim>>                              node_reference;
     std::vector<std::array<dealii::types::global_dof_index, dim>> node_dofs;
     std::vector<bool>                                            node_owned; // x dof locally owned
+    std::set<dealii::types::global_dof_index>                    constrained; // surface dofs
     std::vector<unsigned int>                                    node_body;  // material id
     std::vector<Face>                                            faces;
     std::vector<std::vector<unsigned int>>                       node_faces; // faces of each node
