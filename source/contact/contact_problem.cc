@@ -253,6 +253,7 @@ namespace anvil
     node_reference.clear();
     node_dofs.clear();
     node_owned.clear();
+    node_mine.clear();
     node_body.clear();
     for (const auto key : sorted)
       {
@@ -261,6 +262,12 @@ namespace anvil
         node_reference.push_back(raw[key].X);
         node_dofs.push_back(raw[key].dofs);
         node_owned.push_back(owned.is_element(raw[key].dofs[0]));
+        // Evaluated by process (node number mod processes): every process has
+        // every surface position, so the slave nodes are shared out evenly
+        // whatever the partition of the cells (a long strip may lie on one
+        // process); the element's rows go to their owners through Trilinos.
+        node_mine.push_back(number[key] % Utilities::MPI::n_mpi_processes(mpi_communicator) ==
+                            Utilities::MPI::this_mpi_process(mpi_communicator));
       }
     faces.clear();
     surfaces.clear();
@@ -406,7 +413,7 @@ namespace anvil
           const Surface &slave = surfaces[slave_id];
           std::vector<unsigned int> mine;
           for (const auto n : slave.nodes)
-            if (node_owned[n])
+            if (node_mine[n])
               {
                 mine.push_back(n);
                 areas[Key(p, pass, n)] = tributary_area(n, slave, x_old);
@@ -433,6 +440,10 @@ namespace anvil
   std::vector<std::vector<types::global_dof_index>> ContactProblem<dim>::couplings() const
   {
     std::vector<std::vector<types::global_dof_index>> groups;
+    // The rows of the slave nodes this process evaluates (possibly owned by another).
+    for (unsigned int n = 0; n < node_reference.size(); ++n)
+      if (node_mine[n] && !node_owned[n])
+        groups.emplace_back(node_dofs[n].begin(), node_dofs[n].end());
     for (const auto &[p, pass, n, f] : allowed)
       {
         std::vector<types::global_dof_index> dofs(node_dofs[n].begin(), node_dofs[n].end());
@@ -462,7 +473,7 @@ namespace anvil
             const Surface &slave     = surfaces[slave_id];
             std::vector<unsigned int> mine;
             for (const auto n : slave.nodes)
-              if (node_owned[n])
+              if (node_mine[n])
                 mine.push_back(n);
             std::map<unsigned int, std::vector<unsigned int>> candidates;
             if (pair.tool < 0)
@@ -638,7 +649,7 @@ namespace anvil
     // (pair, pass, node, in_contact, sliding, t_T) of every process.
     std::vector<double> local;
     for (const auto &[key, st] : committed)
-      if (node_owned[std::get<2>(key)])
+      if (node_mine[std::get<2>(key)])
       {
         local.insert(local.end(), {double(std::get<0>(key)), double(std::get<1>(key)),
                                    double(std::get<2>(key)), st.in_contact ? 1. : 0., st.sliding ? 1. : 0.});

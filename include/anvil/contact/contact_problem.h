@@ -45,8 +45,8 @@ namespace anvil
    * Parallel: the surfaces' topology (nodes with their displacement dofs and
    * reference positions, faces) is gathered on every process once; at every
    * evaluation the current and old displacements of the surface nodes are
-   * summed over the processes, and each process evaluates the slave nodes
-   * whose dofs it owns. Node numbers follow the reference coordinates, so
+   * summed over the processes, and each process evaluates every P-th slave
+   * node (node number mod P), whatever the cells' partition. Node numbers follow the reference coordinates, so
    * they do not depend on the partition (checkpoints may change it).
    *
    * Search: per pair, an R-tree of the master faces' bounding boxes (current
@@ -244,6 +244,7 @@ namespace anvil
     std::vector<dealii::Point<dim>>                              node_reference;
     std::vector<std::array<dealii::types::global_dof_index, dim>> node_dofs;
     std::vector<bool>                                            node_owned; // x dof locally owned
+    std::vector<bool>                                            node_mine;  // evaluated here
     std::set<dealii::types::global_dof_index>                    constrained; // surface dofs
     std::vector<unsigned int>                                    node_body;  // material id
     std::vector<Face>                                            faces;
