@@ -305,7 +305,6 @@ namespace anvil
     committed.clear();
     trials.clear();
     allowed.clear();
-    requested.clear();
     grew = true;
   }
 
@@ -807,7 +806,6 @@ namespace anvil
   template <int dim>
   void ContactProblem<dim>::prepare_heat(const double dt)
   {
-    heat_time = t_new;
     std::vector<double> local; // packed HeatElements
     for (const auto &[key, trial] : trials)
       {

@@ -265,14 +265,12 @@ namespace anvil
 
     // Sparsity bookkeeping: allowed (pair, pass, slave node, face) couplings.
     mutable std::set<std::tuple<unsigned int, unsigned int, unsigned int, unsigned int>> allowed;
-    mutable std::set<std::tuple<unsigned int, unsigned int, unsigned int, unsigned int>> requested;
     mutable bool grew = false;
 
     // Heat.
     std::vector<dealii::types::global_dof_index> node_thermal_dof;
     std::vector<bool>                            node_thermal_owned;
     std::vector<HeatElement>                     heat_elements;
-    double                                       heat_time = 0;
     std::map<std::pair<unsigned int, unsigned int>, double> heat_flux; // (pair, slave) -> Q, mW
   };
 } // namespace anvil
