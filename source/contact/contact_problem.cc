@@ -169,6 +169,7 @@ namespace anvil
   {
     axisymmetric     = axi;
     mpi_communicator = dof_handler.get_communicator();
+    n_global_dofs    = dof_handler.n_dofs();
     std::set<types::boundary_id> wanted;
     for (const auto &p : pairs)
       {
@@ -306,6 +307,20 @@ namespace anvil
     trials.clear();
     allowed.clear();
     grew = true;
+  }
+
+  template <int dim>
+  IndexSet ContactProblem<dim>::surface_dofs() const
+  {
+    std::vector<types::global_dof_index> dofs;
+    for (const auto &d : node_dofs)
+      dofs.insert(dofs.end(), d.begin(), d.end());
+    std::sort(dofs.begin(), dofs.end());
+    dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+    IndexSet set(n_global_dofs);
+    set.add_indices(dofs.begin(), dofs.end());
+    set.compress();
+    return set;
   }
 
   template <int dim>

@@ -205,8 +205,19 @@ namespace anvil
     locally_owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
 
+    // The constraints hold lines for the relevant dofs and, with contact, for
+    // every contact-surface dof too: a contact element may touch a master node
+    // far away (its constraints are its owner's: ContactProblem tells which
+    // are constrained, and those are left out of the element).
+    constraint_lines = locally_relevant_dofs;
+    if (contact)
+      {
+        contact->setup(dof_handler, axisymmetric);
+        constraint_lines.add_indices(contact->surface_dofs());
+        constraint_lines.compress();
+      }
     constraints.clear();
-    constraints.reinit(locally_relevant_dofs);
+    constraints.reinit(constraint_lines);
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
     boundary_conditions.make_homogeneous_constraints(dof_handler, constraints);
     make_axis_constraints(constraints);
@@ -214,7 +225,6 @@ namespace anvil
 
     if (contact)
       {
-        contact->setup(dof_handler, axisymmetric);
         contact->set_constrained([this](const types::global_dof_index i) {
           return locally_owned_dofs.is_element(i) && constraints.is_constrained(i);
         });
@@ -468,7 +478,7 @@ namespace anvil
       }
     solution = owned_solution;
     predictor_constraints.clear();
-    predictor_constraints.reinit(locally_relevant_dofs);
+    predictor_constraints.reinit(constraint_lines);
     DoFTools::make_hanging_node_constraints(dof_handler, predictor_constraints);
     make_axis_constraints(predictor_constraints);
     {

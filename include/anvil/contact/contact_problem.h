@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deal.II/base/index_set.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/lac/full_matrix.h>
@@ -113,6 +114,8 @@ namespace anvil
      * master node it does not even see as a ghost must leave such dofs out.
      */
     void set_constrained(const std::function<bool(dealii::types::global_dof_index)> &owned_and_constrained);
+    /// Every displacement dof of the contact surfaces (after setup()).
+    dealii::IndexSet surface_dofs() const;
     /// Whether a surface dof is constrained (false for dofs not on a contact surface).
     bool is_constrained(dealii::types::global_dof_index i) const { return constrained.count(i) > 0; }
 
@@ -239,6 +242,7 @@ namespace anvil
     std::vector<std::unique_ptr<RigidTool<dim>>> tools;
     bool                                axisymmetric = false;
     double                              penetration_limit = 0;
+    dealii::types::global_dof_index     n_global_dofs = 0;
 
     // Gathered topology.
     std::vector<dealii::Point<dim>>                              node_reference;

@@ -263,6 +263,7 @@ namespace anvil
     // indexed by active_cell_index * n_q_points + q.
     std::vector<std::unique_ptr<MaterialPoint>> points;
     ContactProblem<dim>                        *contact = nullptr;
+    dealii::IndexSet                            constraint_lines; // relevant + contact surface dofs
     /// The matrix and its sparsity: the cells' couplings and the contact's.
     void setup_matrix();
     std::vector<double>                         heat_sources; // per point, last assembly
