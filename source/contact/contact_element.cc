@@ -1,6 +1,7 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/differentiation/ad.h>
 
+#include <anvil/contact/ad_helpers.h>
 #include <anvil/contact/contact_element.h>
 
 #include <array>
@@ -15,19 +16,9 @@ namespace anvil
 
     namespace
     {
-      using ADNumber = Sacado::Fad::DFad<double>;
-
-      double value_of(const double x) { return x; }
-      double value_of(const ADNumber &x) { return x.val(); }
-
-      template <int dim, typename Number, typename Other>
-      Number dot(const Tensor<1, dim, Number> &a, const Tensor<1, dim, Other> &b)
-      {
-        Number s = 0;
-        for (unsigned int d = 0; d < dim; ++d)
-          s += a[d] * b[d];
-        return s;
-      }
+      using internal::ADNumber;
+      using internal::dot;
+      using internal::value_of;
 
       template <int dim, typename Number>
       Tensor<1, dim> values(const Tensor<1, dim, Number> &v)

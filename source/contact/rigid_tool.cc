@@ -1,6 +1,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/differentiation/ad.h>
 
+#include <anvil/contact/ad_helpers.h>
 #include <anvil/contact/rigid_tool.h>
 #include <anvil/core/expression.h>
 #include <anvil/core/scene.h>
@@ -15,18 +16,8 @@ namespace anvil
 
   namespace
   {
-    double value_of(const double x) { return x; }
-    double value_of(const Sacado::Fad::DFad<double> &x) { return x.val(); }
-
-    /// a . b for tensors of possibly different number types (a carries the result type).
-    template <int dim, typename Number, typename Other>
-    Number dot(const Tensor<1, dim, Number> &a, const Tensor<1, dim, Other> &b)
-    {
-      Number s = 0;
-      for (unsigned int d = 0; d < dim; ++d)
-        s += a[d] * b[d];
-      return s;
-    }
+    using contact::internal::dot;
+    using contact::internal::value_of;
 
     /// "1, 2.5, -3" -> numbers; exactly @p count of them or an InputError.
     std::vector<double> parse_numbers(const std::string &text,
