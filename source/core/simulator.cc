@@ -416,24 +416,6 @@ namespace anvil
   typename Simulator<dim>::CoupledStep Simulator<dim>::advance(const double t_old, const double t_new)
   {
     CoupledStep result;
-    auto add_thermal = [&](const typename ThermalProblem<dim>::Statistics &s) {
-      auto &a = result.thermal;
-      a.converged = s.converged;
-      a.failure   = s.failure;
-      a.internal_steps += s.internal_steps;
-      a.attempted_steps += s.attempted_steps;
-      a.error_test_failures += s.error_test_failures;
-      a.nonlinear_iterations += s.nonlinear_iterations;
-      a.nonlinear_failures += s.nonlinear_failures;
-      a.linear_setups += s.linear_setups;
-      a.linear_solves += s.linear_solves;
-      a.linear_iterations += s.linear_iterations;
-      a.mass_solves += s.mass_solves;
-      a.rhs_evaluations += s.rhs_evaluations;
-      a.last_internal_step = s.last_internal_step;
-      n_thermal_steps += s.internal_steps;
-      n_thermal_nonlinear += s.nonlinear_iterations;
-    };
     // Both halves back to tₙ (and the points' temperature to Tₙ).
     auto fail = [&](const std::string &why) {
       if (thermal)
@@ -485,7 +467,9 @@ namespace anvil
       if (!contact.empty() && contact.has_heat())
         contact.prepare_heat(t_new - t_old);
       const auto s = thermal->solve_step(t_old, t_new);
-      add_thermal(s);
+      result.thermal += s;
+      n_thermal_steps += s.internal_steps;
+      n_thermal_nonlinear += s.nonlinear_iterations;
       result.thermal_wall += MPI_Wtime() - start;
       return s.converged;
     };

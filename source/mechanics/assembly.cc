@@ -469,27 +469,8 @@ namespace anvil
         const double factor   = dynamic ? 1 - alpha_f : 1.;
         const bool   complete = contact->assemble(
           solution, with_matrix,
-          [&](const std::vector<types::global_dof_index> &all_dofs, const dealii::Vector<double> &all_r,
-              const FullMatrix<double> *all_K) {
-            // A constrained dof this process does not see (a master node far
-            // away, on another process) is left out: its owner's
-            // constraints would have condensed it.
-            std::vector<unsigned int> keep;
-            for (unsigned int i = 0; i < all_dofs.size(); ++i)
-              if (locally_relevant_dofs.is_element(all_dofs[i]) || !contact->is_constrained(all_dofs[i]))
-                keep.push_back(i);
-            std::vector<types::global_dof_index> dofs(keep.size());
-            dealii::Vector<double>               r(keep.size());
-            FullMatrix<double>                   kept(all_K ? keep.size() : 0, all_K ? keep.size() : 0);
-            for (unsigned int a = 0; a < keep.size(); ++a)
-              {
-                dofs[a] = all_dofs[keep[a]];
-                r(a)    = all_r(keep[a]);
-                if (all_K)
-                  for (unsigned int b = 0; b < keep.size(); ++b)
-                    kept(a, b) = (*all_K)(keep[a], keep[b]);
-              }
-            const FullMatrix<double> *K = all_K ? &kept : nullptr;
+          [&](const std::vector<types::global_dof_index> &dofs, const dealii::Vector<double> &r,
+              const FullMatrix<double> *K) {
             dealii::Vector<double> rhs(r);
             rhs *= -factor;
             if (with_matrix && K)
@@ -501,7 +482,7 @@ namespace anvil
               }
             else
               active_constraints->distribute_local_to_global(rhs, dofs, system_rhs);
-            internal_force.add(all_dofs, all_r); // all of it: reactions include contact
+            internal_force.add(dofs, r); // reactions include the contact forces
           });
         if (!complete)
           {

@@ -207,8 +207,9 @@ namespace anvil
 
     // The constraints hold lines for the relevant dofs and, with contact, for
     // every contact-surface dof too: a contact element may touch a master node
-    // far away (its constraints are its owner's: ContactProblem tells which
-    // are constrained, and those are left out of the element).
+    // far away, whose constraint only its owner knows (ContactProblem gathers
+    // which; add_remote_constraints() makes them lines here, so the element's
+    // entries are condensed like any other).
     constraint_lines = locally_relevant_dofs;
     if (contact)
       {
@@ -221,13 +222,17 @@ namespace anvil
     DoFTools::make_hanging_node_constraints(dof_handler, constraints);
     boundary_conditions.make_homogeneous_constraints(dof_handler, constraints);
     make_axis_constraints(constraints);
-    constraints.close();
-
     if (contact)
       {
         contact->set_constrained([this](const types::global_dof_index i) {
           return locally_owned_dofs.is_element(i) && constraints.is_constrained(i);
         });
+        add_remote_constraints(constraints);
+      }
+    constraints.close();
+
+    if (contact)
+      {
         TrilinosWrappers::MPI::Vector zero(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
         contact->begin_step(0, 0, zero);
       }
@@ -279,6 +284,17 @@ namespace anvil
     setup_quadrature_point_data();
     if (parameters.dynamic)
       setup_dynamics();
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::add_remote_constraints(AffineConstraints<double> &c) const
+  {
+    // Contact surface dofs constrained by their (far away) owner: homogeneous
+    // here (the owner applies any prescribed value).
+    if (contact)
+      for (const auto i : contact->constrained_dofs())
+        if (!locally_relevant_dofs.is_element(i) && !c.is_constrained(i))
+          c.add_line(i);
   }
 
   template <int dim>
@@ -499,6 +515,7 @@ namespace anvil
             predictor_constraints.set_inhomogeneity(dof, increment + old_solution(dof) - solution(dof));
           }
     }
+    add_remote_constraints(predictor_constraints);
     predictor_constraints.close();
     active_constraints = &predictor_constraints;
     double largest_jump = 0;

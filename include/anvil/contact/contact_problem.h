@@ -111,13 +111,13 @@ namespace anvil
     /**
      * Record which surface dofs are constrained (Dirichlet, hanging), as the
      * owners know them (collective): a process adding an element whose
-     * master node it does not even see as a ghost must leave such dofs out.
+     * master node it does not even see as a ghost must condense such dofs.
      */
     void set_constrained(const std::function<bool(dealii::types::global_dof_index)> &owned_and_constrained);
     /// Every displacement dof of the contact surfaces (after setup()).
     dealii::IndexSet surface_dofs() const;
-    /// Whether a surface dof is constrained (false for dofs not on a contact surface).
-    bool is_constrained(dealii::types::global_dof_index i) const { return constrained.count(i) > 0; }
+    /// The surface dofs their owners constrain.
+    const std::set<dealii::types::global_dof_index> &constrained_dofs() const { return constrained; }
 
     /// The step [t_old, t_new] about to be solved; @p u_old the committed displacement.
     void begin_step(double t_old, double t_new, const Vector &u_old_ghosted);

@@ -266,6 +266,8 @@ namespace anvil
     dealii::IndexSet                            constraint_lines; // relevant + contact surface dofs
     /// The matrix and its sparsity: the cells' couplings and the contact's.
     void setup_matrix();
+    /// Lines for contact-surface dofs that this process does not see but their owner constrains.
+    void add_remote_constraints(dealii::AffineConstraints<double> &c) const;
     std::vector<double>                         heat_sources; // per point, last assembly
     std::vector<double>                         thermoelastic_sources;
     TemperatureField                            temperature_field;

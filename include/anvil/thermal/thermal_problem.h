@@ -147,6 +147,26 @@ namespace anvil
                     linear_solves = 0, linear_iterations = 0, mass_solves = 0,
                     rhs_evaluations = 0;
       double last_internal_step = 0;
+
+      /// Several solves of one step (iterated staggered): counts add up, the
+      /// outcome and the last internal step are the latest solve's.
+      Statistics &operator+=(const Statistics &s)
+      {
+        converged = s.converged;
+        failure   = s.failure;
+        internal_steps += s.internal_steps;
+        attempted_steps += s.attempted_steps;
+        error_test_failures += s.error_test_failures;
+        nonlinear_iterations += s.nonlinear_iterations;
+        nonlinear_failures += s.nonlinear_failures;
+        linear_setups += s.linear_setups;
+        linear_solves += s.linear_solves;
+        linear_iterations += s.linear_iterations;
+        mass_solves += s.mass_solves;
+        rhs_evaluations += s.rhs_evaluations;
+        last_internal_step = s.last_internal_step;
+        return *this;
+      }
     };
 
     /// Volumetric source per quadrature point of QGauss(p + 1) (p = Polynomial
