@@ -34,7 +34,7 @@ RTOL = 1e-10
 # times the size of the bodies (1e-13 mm: bodies up to ~500 mm).
 TINY = {"force": 1e-12, "displacement": 1e-15, "stress": 1e-12, "strain": 1e-15,
         "temperature": 1e-12, "energy": 1e-15, "heat": 1e-15, "heat_content": 1e-12,
-        "work": 1e-15, "time": 1e-20, "residual": 1e-14, "increment": 1e-18,
+        "work": 1e-15, "time": 1e-20, "time_step": 1e-20, "residual": 1e-14, "increment": 1e-18,
         "line_search": 1e-15, "penetration": 1e-13, "rate": 1e-12, "staggered": 1e-15,
         "ratio": 1e-12}
 TINY_DEFAULT = 1e-15
@@ -66,7 +66,8 @@ EXACT_COLUMN = re.compile(
 
 # "file:column" -> group, first match wins (":" starts the column name).
 COLUMN_GROUPS = [
-    (r":(time|time_step|last_internal_step)$", "time"),
+    (r":time$", "time"),
+    (r":(time_step|last_internal_step)$", "time_step"),
     (r"^reactions\.csv:.*_F[xyz]$", "force"),
     (r"^contact\.csv:.*(_F[xyz]|_normal|_tangential)$", "force"),
     (r"^contact\.csv:.*(_friction_work|_heat_exchanged|_friction_heat)$", "work"),
