@@ -36,6 +36,8 @@ expect "unknown option"     "unknown option '--frobnicate'"               "$anvi
 expect "bad probe"          "--set: 'Output/Probes'"                       "$anvil" "$src/prm/cantilever.prm" --set "Output/Probes=tip: 10"
 expect "unknown QoI probe"  "'Output/Quantities of interest'.*no probe named 'tap'" "$anvil" "$src/prm/cantilever.prm" --set "Output/Quantities of interest=a: probe(tap, ux)"
 expect "reaction in a thermal-only scene" "--set: 'Output/Quantities of interest'.*reaction.*needs the mechanics.*thermal only" "$anvil" "$src/prm/heat_half_space.prm" --set "Output/Quantities of interest=r: reaction(left, x)"
+expect "maximum step below the first" "--set: 'Time/Maximum time step' = 0.01 s must not be smaller than Time step" "$anvil" "$src/prm/necking_bar.prm" --set "Time/Maximum time step=0.01"
+expect "unwritable output directory" "'Output/Directory' = '/proc/anvil_cannot' cannot be created" "$anvil" "$src/prm/necking_bar.prm" --set "Output/Directory=/proc/anvil_cannot"
 expect "unknown coupling"   "--set 'Physics/Coupling=heat'.*heat.*mechanical only.*thermal only" "$anvil" "$src/prm/heat_half_space.prm" --set "Physics/Coupling=heat"
 expect "mechanics in a thermal-only scene" "--set: 'Boundary conditions/Displacement' is given, but Physics/Coupling is 'thermal only'" "$anvil" "$src/prm/heat_half_space.prm" --set "Boundary conditions/Displacement=left: ux = 0"
 # Contact pairs and rigid tools (tests/contact_block.prm: pair 'sliding' of

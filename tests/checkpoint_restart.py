@@ -63,7 +63,7 @@ check(len(a["time"]) == len(b["time"]) and
 # A checkpoint that does not match the scene is refused before any work, with
 # one line naming Output/Restart from and what differs (exit 2).
 import subprocess
-from anvil_test import ANVIL, SOURCE_DIR
+from anvil_test import ANVIL, SOURCE_DIR, WORK_DIR
 def refused(scene, sets, expected, what):
     cmd = [ANVIL, os.path.join(SOURCE_DIR, scene)]
     for x in sets:
@@ -73,14 +73,39 @@ def refused(scene, sets, expected, what):
     check(p.returncode == 2 and len(lines) == 1 and "Output/Restart from" in p.stderr and expected in p.stderr
           and "Timer" not in p.stdout + p.stderr,
           "%s refused: exit %d, %r" % (what, p.returncode, p.stderr.strip()))
-ckpt = "Output/Restart from=" + out_half + "/checkpoint"
+out_mid, _, _ = run("tests/plastic_block.prm", heat + ["Time/End time=0.5"], name="ckpt_heat_mid")
+ck = out_mid + "/checkpoint"
+ckpt = "Output/Restart from=" + ck
 refused("tests/plastic_block.prm", heat[1:] + ["Physics/Coupling=isothermal split", ckpt],
         "Physics/Coupling = 'adiabatic split', this scene has 'isothermal split'", "another coupling scheme")
 refused("prm/two_blocks.prm", ["Physics/Coupling=adiabatic split", ckpt],
         "Bodies/Names = 'body', this scene has 'lower,upper'", "a checkpoint of a scene with other bodies")
-state = os.path.join(out_half, "checkpoint", "state.txt")
+# A restart into the directory of a run that went further (a run killed after
+# its last checkpoint) truncates every history at the checkpoint's time: no
+# time twice, none going back, as many rows as the uninterrupted run.
+import shutil
+shutil.copytree(out_full, out_full + "_again", dirs_exist_ok=True)
+_, again, _ = run("tests/plastic_block.prm", heat + ["Output/Restart from=" + ck],
+                  name=os.path.basename(out_full) + "_again")
+for f in ("reactions.csv", "energy.csv", "probes.csv", "thermal.csv"):
+    a, b = read_csv(os.path.join(out_full, f)), read_csv(os.path.join(out_full + "_again", f))
+    times = b["time"]
+    check(len(times) == len(a["time"]) and all(t1 < t2 for t1, t2 in zip(times, times[1:])),
+          "%s after a restart into a longer run's directory: %d rows (uninterrupted %d), times increasing"
+          % (f, len(times), len(a["time"])))
+close(again["quantities_of_interest"]["F"], full["quantities_of_interest"]["F"], 1e-7,
+      "and the same final force")
+
+state = os.path.join(ck, "state.txt")
 text = open(state).read()
 open(state, "w").write(text.replace("anvil-checkpoint 2", "anvil-checkpoint 1", 1))
 refused("tests/plastic_block.prm", heat + [ckpt], "checkpoint format 1", "a checkpoint of another format")
+open(state, "w").write("garbage\n" * 3)
+refused("tests/plastic_block.prm", heat + [ckpt], "holds no anvil checkpoint", "a garbage state file")
+open(state, "w").write(text.replace("\ntime ", "\ntime 1e99999 x", 1))
+p = subprocess.run([ANVIL, os.path.join(SOURCE_DIR, "tests/plastic_block.prm")] +
+                   sum([["--set", x] for x in heat + [ckpt]], []), capture_output=True, text=True)
+check(p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1 and "'time'" in p.stderr,
+      "a checkpoint entry that is not a number: one line naming it, exit 2 (%r)" % p.stderr.strip())
 open(state, "w").write(text)
 finish()

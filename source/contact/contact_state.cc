@@ -124,9 +124,17 @@ namespace anvil
   {
     std::size_t n = 0;
     in >> n;
+    // A count larger than the node states the surfaces can hold is damage, not
+    // a state to allocate for.
+    const std::size_t most = (node_reference.size() + 1) * (5 + dim) * 2 * std::max<std::size_t>(1, pairs.size());
+    if (!in || n > most)
+      throw InputError("the contact state holds " + std::to_string(n) +
+                       " values, more than the contact surfaces can have (damaged?)");
     std::vector<double> all(n);
     for (double &x : all)
       in >> x;
+    if (!in)
+      throw InputError("the contact state is truncated (damaged?)");
     committed.clear();
     for (std::size_t i = 0; i + 5 + dim <= all.size(); i += 5 + dim)
       {
@@ -140,9 +148,9 @@ namespace anvil
       }
     std::size_t n_pairs = 0;
     in >> n_pairs;
-    AssertThrow(n_pairs == pair_totals.size(),
-                ExcMessage("the checkpoint has " + std::to_string(n_pairs) +
-                           " contact pairs, the scene " + std::to_string(pair_totals.size())));
+    if (n_pairs != pair_totals.size())
+      throw InputError("the checkpoint has " + std::to_string(n_pairs) + " contact pairs, the scene " +
+                       std::to_string(pair_totals.size()));
     for (auto &t : pair_totals)
       in >> t.friction_work >> t.heat_exchanged >> t.friction_heat;
   }

@@ -1,14 +1,59 @@
 #include <anvil/core/csv_history.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 
 namespace anvil
 {
+  namespace
+  {
+    // Keeps the header and the rows up to @p keep_until in its "time" column:
+    // a run killed after its last checkpoint wrote rows the restart writes
+    // again, and a history must not hold a time twice or go back in time.
+    void truncate_rows(const std::string &filename, const double keep_until)
+    {
+      std::vector<std::string> lines;
+      {
+        std::ifstream in(filename);
+        for (std::string line; std::getline(in, line);)
+          lines.push_back(line);
+      }
+      if (lines.empty())
+        return;
+      std::size_t        time_column = 0, k = 0;
+      std::istringstream header(lines[0]);
+      bool               found = false;
+      for (std::string name; std::getline(header, name, ','); ++k)
+        if (name == "time")
+          {
+            time_column = k;
+            found       = true;
+          }
+      if (!found)
+        return;
+      std::ofstream out(filename, std::ios::trunc);
+      out << lines[0] << '\n';
+      const double limit = keep_until + 1e-12 * std::max(1., std::abs(keep_until));
+      for (std::size_t i = 1; i < lines.size(); ++i)
+        {
+          std::istringstream row(lines[i]);
+          std::string        cell;
+          for (std::size_t c = 0; c <= time_column && std::getline(row, cell, ','); ++c)
+            ;
+          char  *end  = nullptr;
+          double time = std::strtod(cell.c_str(), &end);
+          if (end != cell.c_str() && time <= limit)
+            out << lines[i] << '\n';
+        }
+    }
+  } // namespace
+
   void CsvHistory::open(const std::string &filename, const std::vector<std::string> &columns,
-                        const bool write, const bool append)
+                        const bool write, const bool append, const double keep_until)
   {
     n_columns = columns.size();
     if (!write)
@@ -17,6 +62,7 @@ namespace anvil
     // another directory starts its files with their header.
     if (append && std::ifstream(filename).good())
       {
+        truncate_rows(filename, keep_until);
         file.open(filename, std::ios::app);
         return;
       }

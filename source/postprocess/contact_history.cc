@@ -24,7 +24,7 @@ namespace anvil
                                 "_friction_heat"})
             columns.push_back(p.name + c);
         }
-      csv.open(s.output_directory + "/contact.csv", columns, s.is_root(), append);
+      csv.open(s.output_directory + "/contact.csv", columns, s.is_root(), append, s.time);
     }
 
     void accepted(const SimulationState<dim> &s, const StepReport<dim> *) override

@@ -26,7 +26,7 @@ namespace anvil
                        {"heat_content", "heat_content_change", "boundary_heat_in", "source_heat",
                         "plastic_heat", "thermoelastic_heat", "contact_heat",
                         "heat_balance_error"});
-      csv.open(s.output_directory + "/energy.csv", columns, s.is_root(), append);
+      csv.open(s.output_directory + "/energy.csv", columns, s.is_root(), append, s.time);
     }
 
     void accepted(const SimulationState<dim> &s, const StepReport<dim> *) override

@@ -1,5 +1,6 @@
 #include <deal.II/base/data_out_base.h>
 
+#include <anvil/core/input_error.h>
 #include <anvil/postprocess/field_output.h>
 
 #include <fstream>
@@ -52,8 +53,13 @@ namespace anvil
     std::istringstream in(it->second);
     std::size_t        n = 0;
     in >> n;
+    if (!in || n > it->second.size())
+      throw InputError("the checkpoint entry '" + key + "' is damaged (" + std::to_string(n) +
+                       " records in " + std::to_string(it->second.size()) + " characters)");
     records.resize(n);
     for (auto &[time, name] : records)
       in >> time >> name;
+    if (!in)
+      throw InputError("the checkpoint entry '" + key + "' is truncated");
   }
 } // namespace anvil

@@ -19,7 +19,7 @@ namespace anvil
                 "rhs_evaluations", "last_internal_step", "staggered_iterations",
                 "staggered_change", "staggered_contraction", "mechanics_wall_time",
                 "thermal_wall_time"},
-               s.is_root(), append);
+               s.is_root(), append, s.time);
     }
     void initial(const SimulationState<dim> &) override {}
 

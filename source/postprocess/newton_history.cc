@@ -14,7 +14,7 @@ namespace anvil
     {
       csv.open(s.output_directory + "/newton.csv",
                {"step", "time", "iteration", "residual", "increment", "line_search", "converged"},
-               s.is_root(), append);
+               s.is_root(), append, s.time);
     }
     void initial(const SimulationState<dim> &) override {}
 

@@ -77,7 +77,7 @@ namespace anvil
           if (s.physics.heat())
             columns.push_back(p.name + "_temperature");
         }
-      csv.open(s.output_directory + "/probes.csv", columns, s.is_root(), append);
+      csv.open(s.output_directory + "/probes.csv", columns, s.is_root(), append, s.time);
     }
 
     void accepted(const SimulationState<dim> &s, const StepReport<dim> *) override

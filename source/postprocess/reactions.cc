@@ -16,7 +16,7 @@ namespace anvil
       for (const auto &[name, id] : s.geometry.boundary_names())
         for (unsigned int d = 0; d < dim; ++d)
           columns.push_back(name + "_F" + "xyz"[d]);
-      csv.open(s.output_directory + "/reactions.csv", columns, s.is_root(), append);
+      csv.open(s.output_directory + "/reactions.csv", columns, s.is_root(), append, s.time);
     }
 
     void accepted(const SimulationState<dim> &s, const StepReport<dim> *) override

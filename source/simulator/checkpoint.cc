@@ -5,6 +5,8 @@
 #include <anvil/core/named_values.h>
 #include <anvil/simulator/simulator.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -64,13 +66,22 @@ namespace anvil
           throw InputError("the checkpoint has no entry '" + key + "' (damaged?)");
         return it->second;
       }
-      double number(const std::string &key) const { return std::stod(text(key)); }
+      double number(const std::string &key) const { return to_number(key, text(key)); }
+      static double to_number(const std::string &key, const std::string &value)
+      {
+        char        *end = nullptr;
+        const double x   = std::strtod(value.c_str(), &end);
+        if (end == value.c_str() || !std::isfinite(x))
+          throw InputError("the checkpoint entry '" + key + "' = '" + value.substr(0, 40) +
+                           "' is not a finite number (damaged?)");
+        return x;
+      }
       NamedValues group(const std::string &prefix) const
       {
         NamedValues v;
         for (const auto &[key, value] : entries)
           if (key.rfind(prefix + ".", 0) == 0)
-            v[key.substr(prefix.size() + 1)] = std::stod(value);
+            v[key.substr(prefix.size() + 1)] = to_number(key, value);
         return v;
       }
     };
@@ -84,6 +95,9 @@ namespace anvil
     if (!std::filesystem::exists(file))
       scene.fail(path, "= '" + restart_directory + "' is not a checkpoint directory (no state.txt in it)");
     const StateFile state(file);
+    if (state.format == 0)
+      scene.fail(path, "= '" + restart_directory + "' holds no anvil checkpoint (its state.txt "
+                         "does not begin with '" + checkpoint_magic + "')");
     if (state.format != checkpoint_format)
       scene.fail(path, "= '" + restart_directory + "' was written in checkpoint format " +
                          std::to_string(state.format) + "; this anvil reads format " +
@@ -99,15 +113,42 @@ namespace anvil
     refuse_if("coupling", "Physics/Coupling", coupling);
     refuse_if("bodies", "Bodies/Names", joined(scene.body_names()));
     refuse_if("contact_pairs", "Contact/Pairs", joined(scene.contact_pair_names()));
+    // Every number the restart will read, read now: a damaged file is refused
+    // before any work, not halfway through setting up.
+    try
+      {
+        for (const auto &[key, value] : state.entries)
+          if (key != "scene" && key != "coupling" && key != "bodies" && key != "contact_pairs" &&
+              key.rfind("output.", 0) != 0)
+            StateFile::to_number(key, value);
+        std::istringstream contact(state.contact);
+        std::size_t        n = 0, tokens = 0;
+        contact >> n;
+        for (std::string token; contact >> token;)
+          ++tokens;
+        if (!state.contact.empty() && n > tokens)
+          throw InputError("its contact state announces " + std::to_string(n) + " values and holds " +
+                           std::to_string(tokens) + " (damaged?)");
+      }
+    catch (const InputError &e)
+      {
+        scene.fail(path, "= '" + restart_directory + "': " + e.what());
+      }
   }
 
   template <int dim>
   void Simulator<dim>::write_checkpoint(const double t, const double dt)
   {
     TimerOutput::Scope s(*timer, "Checkpoint");
-    const std::string  dir = output_dir + "/checkpoint";
+    // Written under a new name and renamed when complete: a run killed or a
+    // disk filled mid-write never destroys the last good checkpoint.
+    const std::string final_dir = output_dir + "/checkpoint";
+    const std::string dir       = final_dir + ".new";
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      std::filesystem::create_directories(dir);
+      {
+        std::filesystem::remove_all(dir);
+        std::filesystem::create_directories(dir);
+      }
     MPI_Barrier(mpi_communicator);
     // Attachments are read back in this order: mechanics (vectors, points), heat.
     if (physics.mechanics())
@@ -121,10 +162,24 @@ namespace anvil
     std::map<std::string, std::string> output_state;
     for (const auto &o : outputs)
       o->save(output_state);
-    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
-      return;
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        write_state(dir + "/state.txt", t, dt, contact_state.str(), output_state);
+        std::filesystem::remove_all(final_dir + ".old");
+        if (std::filesystem::exists(final_dir))
+          std::filesystem::rename(final_dir, final_dir + ".old");
+        std::filesystem::rename(dir, final_dir);
+        std::filesystem::remove_all(final_dir + ".old");
+      }
+    MPI_Barrier(mpi_communicator);
+  }
 
-    std::ofstream out(dir + "/state.txt");
+  template <int dim>
+  void Simulator<dim>::write_state(const std::string &filename, const double t, const double dt,
+                                   const std::string                        &contact_state,
+                                   const std::map<std::string, std::string> &output_state) const
+  {
+    std::ofstream out(filename);
     out << std::setprecision(17) << checkpoint_magic << ' ' << checkpoint_format << '\n';
     auto entry = [&](const std::string &key, const auto &value) {
       out << key << ' ' << value << '\n';
@@ -159,7 +214,10 @@ namespace anvil
     for (const auto &[key, value] : output_state)
       entry("output." + key, value);
     if (!physics.contact_problem().empty())
-      out << "contact\n" << contact_state.str();
+      out << "contact\n" << contact_state;
+    out.flush();
+    if (!out)
+      throw SimulationError("could not write the checkpoint " + filename + " (disk full?)");
   }
 
   template <int dim>
@@ -216,6 +274,9 @@ namespace anvil
 #define INSTANTIATE(dim)                                                                           \
   template void Simulator<dim>::check_checkpoint() const;                                        \
   template void Simulator<dim>::write_checkpoint(double, double);                                \
+  template void Simulator<dim>::write_state(const std::string &, double, double,                 \
+                                            const std::string &,                                 \
+                                            const std::map<std::string, std::string> &) const;   \
   template void Simulator<dim>::read_checkpoint(double &, double &);
   ANVIL_INSTANTIATE(INSTANTIATE)
 #undef INSTANTIATE

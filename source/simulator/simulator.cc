@@ -6,6 +6,7 @@
 #include <anvil/simulator/simulator.h>
 
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -107,6 +108,10 @@ namespace anvil
       time.maximum_time_step = time.time_step;
     if (time.minimum_time_step > time.time_step)
       scene.fail("Time/Minimum time step", "must not exceed Time step");
+    if (time.maximum_time_step < time.time_step)
+      scene.fail("Time/Maximum time step", "= " + Utilities::to_string(time.maximum_time_step) +
+                                             " s must not be smaller than Time step = " +
+                                             Utilities::to_string(time.time_step) + " s");
   }
 
   template <int dim>
@@ -132,6 +137,30 @@ namespace anvil
         if (output->applies(contents))
           outputs.push_back(std::move(output));
       }
+    // Last: a scene with an error elsewhere leaves no directory behind.
+    check_output_directory();
+  }
+
+  template <int dim>
+  void Simulator<dim>::check_output_directory() const
+  {
+    // Before any work, on every rank the same answer: an output directory
+    // that cannot be written would otherwise end the run at its first output.
+    std::string problem;
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      {
+        std::error_code ec;
+        std::filesystem::create_directories(output_dir + "/fields", ec);
+        const std::string probe = output_dir + "/.anvil_write_test";
+        if (ec)
+          problem = "cannot be created (" + ec.message() + ")";
+        else if (!std::ofstream(probe).good())
+          problem = "is not writable";
+        std::filesystem::remove(probe, ec);
+      }
+    problem = Utilities::MPI::broadcast(mpi_communicator, problem, 0);
+    if (!problem.empty())
+      scene.fail("Output/Directory", "= '" + output_dir + "' " + problem);
   }
 
   template <int dim>
@@ -163,6 +192,22 @@ namespace anvil
   template <int dim>
   bool Simulator<dim>::run()
   {
+    try
+      {
+        return run_steps();
+      }
+    catch (...)
+      {
+        // Without this the TimerOutput, destroyed during the unwinding, prints
+        // deal.II's banner about uncaught exceptions before anvil's one line.
+        timer.reset();
+        throw;
+      }
+  }
+
+  template <int dim>
+  bool Simulator<dim>::run_steps()
+  {
     wall_start = MPI_Wtime();
     timer = std::make_unique<TimerOutput>(mpi_communicator, pcout, TimerOutput::never,
                                           TimerOutput::wall_times);
@@ -175,6 +220,15 @@ namespace anvil
       {
         read_checkpoint(t, dt);
         physics.restarted();
+        // The scene's step settings apply to the continuation (a checkpoint
+        // written after a cut-back cascade would otherwise impose its tiny or,
+        // after re-growth, its large step).
+        const double saved = dt;
+        dt                 = std::min({dt, time.time_step, time.maximum_time_step});
+        if (!quiet)
+          pcout << "anvil: restarting at t = " << t << " s from " << restart_directory
+                << " with dt = " << dt << " s (saved step " << saved << " s, Time/Time step "
+                << time.time_step << " s)" << std::endl;
       }
     double last_accepted_step = dt;
 

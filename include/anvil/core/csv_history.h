@@ -1,6 +1,7 @@
 #pragma once
 
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -14,9 +15,10 @@ namespace anvil
   {
   public:
     /// @p write is false on every rank but 0; @p append continues an existing
-    /// file (a restart) without writing the header again.
+    /// file (a restart) without writing the header again, after dropping its
+    /// rows later than @p keep_until (the checkpoint's time).
     void open(const std::string &filename, const std::vector<std::string> &columns, bool write,
-              bool append = false);
+              bool append = false, double keep_until = std::numeric_limits<double>::infinity());
     void add_row(const std::vector<double> &values);
     bool is_open() const { return file.is_open(); }
 

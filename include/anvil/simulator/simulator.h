@@ -58,8 +58,11 @@ namespace anvil
       unsigned int easy_iterations;
     };
 
+    bool run_steps();
     void parse_time(dealii::ParameterHandler &prm);
     void parse_output(dealii::ParameterHandler &prm);
+    /// Refuses (InputError) an output directory that cannot be created or written.
+    void check_output_directory() const;
     void setup();
     /// The state outputs read, at time @p t after @p step accepted steps.
     SimulationState<dim> state(double t, unsigned int step, bool last = false) const;
@@ -74,6 +77,9 @@ namespace anvil
     // Checkpoints (simulator/checkpoint.cc): named, versioned entries in state.txt.
     void write_checkpoint(double time, double time_step);
     void read_checkpoint(double &time, double &time_step);
+    void write_state(const std::string &filename, double time, double time_step,
+                     const std::string                        &contact_state,
+                     const std::map<std::string, std::string> &output_state) const;
     /// Refuses (InputError) a checkpoint of another scene, scheme or format.
     void check_checkpoint() const;
 
