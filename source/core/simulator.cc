@@ -1,3 +1,4 @@
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 
@@ -288,7 +289,8 @@ namespace anvil
         if (thermal)
           pcout << thermal->n_dofs() << " temperature DoFs, ";
         pcout << coupling << ", " << Utilities::MPI::n_mpi_processes(mpi_communicator)
-              << " process(es) -> " << output_dir << std::endl;
+              << " process(es) x " << MultithreadInfo::n_threads() << " thread(s) -> "
+              << output_dir << std::endl;
       }
 
     open_histories();

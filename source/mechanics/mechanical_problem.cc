@@ -13,8 +13,11 @@
 
 #include <anvil/core/input_error.h>
 #include <anvil/core/scene.h>
-#include <anvil/mechanics/kinematics.h>
 #include <anvil/contact/contact_problem.h>
+#include <anvil/core/instantiate.h>
+#include <anvil/mechanics/assembly_mapping.h>
+#include <anvil/mechanics/element_formulation.h>
+#include <anvil/mechanics/kinematics.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
 #include <chrono>
@@ -195,13 +198,36 @@ namespace anvil
     , dof_handler(triangulation)
     , quadrature(parameters.polynomial_degree + 1)
     , face_quadrature(parameters.polynomial_degree + 1)
-  {}
+  {
+    formulation =
+      std::make_unique<const MechanicsAssembly::Formulation<dim>>(fe, axisymmetric, f_bar);
+    assembly_mapping = std::make_unique<MechanicsAssembly::AssemblyMapping<dim>>();
+  }
+
+  template <int dim>
+  MechanicalProblem<dim>::~MechanicalProblem() = default;
+
+  template <int dim>
+  Tensor<2, 3> MechanicalProblem<dim>::deformation_gradient(const Tensor<2, dim> &grad_u,
+                                                            const double          radial_displacement,
+                                                            const double          radius) const
+  {
+    return formulation->deformation_gradient(grad_u, radial_displacement, radius);
+  }
 
   template <int dim>
   void MechanicalProblem<dim>::setup()
   {
     TimerOutput::Scope t(timer, "Mechanics: setup");
     dof_handler.distribute_dofs(fe);
+    {
+      // The assembly's cells in the order of the loop (WorkStream's too).
+      std::vector<typename Triangulation<dim>::cell_iterator> cells;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          cells.push_back(cell);
+      assembly_mapping->reinit(cells, triangulation.n_active_cells());
+    }
     locally_owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
 
@@ -328,11 +354,10 @@ namespace anvil
   void MechanicalProblem<dim>::setup_quadrature_point_data()
   {
     const unsigned int n_q = quadrature.size();
-    points.clear();
-    points.resize(triangulation.n_active_cells() * n_q);
-    heat_sources.assign(triangulation.n_active_cells() * n_q, 0.);
-    thermoelastic_sources = heat_sources;
-    material_temperature.assign(heat_sources.size(), parameters.temperature);
+    points.reinit(triangulation, n_q);
+    heat_sources.reinit(triangulation, n_q, 0.);
+    thermoelastic_sources.reinit(triangulation, n_q, 0.);
+    material_temperature.reinit(triangulation, n_q, parameters.temperature);
     material_temperature_old = material_temperature;
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -342,7 +367,7 @@ namespace anvil
             throw InputError("internal: no material for body id " +
                              std::to_string(cell->material_id()));
           for (unsigned int q = 0; q < n_q; ++q)
-            points[cell->active_cell_index() * n_q + q] = m->second->create_point();
+            points(cell, q) = m->second->create_point();
         }
   }
 
@@ -658,7 +683,7 @@ namespace anvil
   template <int dim>
   void MechanicalProblem<dim>::revert_step()
   {
-    for (auto &p : points)
+    for (auto &p : points.raw())
       if (p)
         p->revert();
     owned_solution = owned_old_solution;
@@ -720,7 +745,7 @@ namespace anvil
           double J = 0, eqps = 0;
           for (unsigned int q = 0; q < n_q; ++q)
             {
-              const auto &p = *points[cell->active_cell_index() * n_q + q];
+              const auto &p = *points(cell, q);
               s += p.stress() / n_q;
               eqps += p.equivalent_plastic_strain() / n_q;
               const double R  = axisymmetric ? fe_values.quadrature_point(q)[0] : 1.;
@@ -771,9 +796,8 @@ namespace anvil
             const unsigned int n_q = quadrature.size();
             for (unsigned int k = 0; k < n_q; ++k)
               {
-                stress += points[cell->active_cell_index() * n_q + k]->stress() / n_q;
-                plastic_strain +=
-                  points[cell->active_cell_index() * n_q + k]->equivalent_plastic_strain() / n_q;
+                stress += points(cell, k)->stress() / n_q;
+                plastic_strain += points(cell, k)->equivalent_plastic_strain() / n_q;
               }
           }
       }
@@ -798,9 +822,9 @@ namespace anvil
   {
     return dof_handler.memory_consumption() + system_matrix.memory_consumption() +
            8 * solution.memory_consumption() + constraints.memory_consumption() +
-           points.size() * (sizeof(void *) + 2 * sizeof(SymmetricTensor<2, 3>) + 16);
+           points.raw().size() *
+             (sizeof(std::shared_ptr<MaterialPoint>) + 2 * sizeof(SymmetricTensor<2, 3>) + 16);
   }
 
-  template class MechanicalProblem<2>;
-  template class MechanicalProblem<3>;
+  ANVIL_INSTANTIATE_CLASS(MechanicalProblem)
 } // namespace anvil
