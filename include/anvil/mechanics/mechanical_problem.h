@@ -249,6 +249,14 @@ namespace anvil
     MechanicsAssembly::Context<dim> assembly_context(bool with_matrix, double time);
     /// The contact elements into the system, serially; false if the matrix must grow.
     bool assemble_contact(bool with_matrix);
+    /// The first iterate of a step (extrapolated, or the last solution) and
+    /// the predictor constraints imposing the step's boundary values; true if
+    /// they jump (then the first update is taken whole).
+    bool predict(double time_old, double time_new, bool from_last_solution);
+    /// Step length α of the Newton update @p du (Crisfield's energy line
+    /// search); leaves the solution at u + α du. @p full_step: α = 1.
+    double line_search(const dealii::TrilinosWrappers::MPI::Vector &du, bool full_step,
+                       double time_new);
     unsigned int solve_linear_system(dealii::TrilinosWrappers::MPI::Vector &du);
     double       residual_norm() const;
     /// 3x3 F from the in-plane gradient (and the hoop stretch if axisymmetric).
