@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 
@@ -55,6 +56,8 @@ int main(int argc, char **argv)
   const unsigned int n2 = quick ? 64 : 256, n3 = quick ? 10 : 24, repetitions = quick ? 3 : 5;
   std::printf("mechanical assembly, tangent + residual, one process, %u cores\n",
               MultithreadInfo::n_cores());
+  if (std::getenv("DEAL_II_NUM_THREADS"))
+    std::printf("note: DEAL_II_NUM_THREADS=%s caps the threads\n", std::getenv("DEAL_II_NUM_THREADS"));
   const anvil_test::Overrides common = {{"Mechanics/Element", "F-bar"},
                                         {"Mechanics/Newton/Maximum iterations", "1"},
                                         {"Mechanics/Linear solver/Type", "iterative"},
