@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Benchmark (prints figures, asserts nothing): assembly throughput, linear solve
-# time, memory per DoF and Newton iterations for 2D and 3D elastic scenes.
+# time, memory per DoF and Newton iterations for 2D and 3D elastic scenes; the
+# assembly's speed-up on 2 threads.
 #   contrib/bench.sh            # 2D 512x512 (0.5 M DoFs) and 3D 69^3 (1 M DoFs), one process
 #   contrib/bench.sh --small    # quick sizes
 set -euo pipefail
@@ -54,6 +55,11 @@ print("targets: elastic assembly >= 300000 cells/s (2D), >= 40000 (3D); plastic 
 print("         3D 1M DoFs within 4096 B/DoF; <= 6 Newton iterations per step on the necking bar")
 PY
 "$ANVIL_BUILD/tests/bench_material_points" $([ "${1:-}" = "--small" ] && echo --quick)
+# Mechanical assembly on 1 and 2 threads (contrib/bench/assembly_threads.cc):
+# time per full assembly (tangent + residual) of a 2D and a 3D J2 F-bar block
+# in plastic flow, best of 5, and the speed-up (the rest of this script runs
+# on one thread: DEAL_II_NUM_THREADS=1 above).
+env -u DEAL_II_NUM_THREADS "$ANVIL_BUILD/tests/bench_assembly_threads" $([ "${1:-}" = "--small" ] && echo --quick)
 # Thermo-mechanical necking bar (prm/necking_bar_thermal.prm, Simo & Miehe 1992)
 # per coupling scheme: wall time, cost of the heat half against the mechanics
 # (target <= 25 %), ARKode steps, Newton and staggered iterations, temperatures.

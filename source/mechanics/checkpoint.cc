@@ -46,13 +46,13 @@ namespace anvil
         std::vector<double> data;
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            const auto state = points[cell->active_cell_index() * n_q + q]->save_state();
+            const auto state = points(cell, q)->save_state();
             data.push_back(state.size());
             data.insert(data.end(), state.begin(), state.end());
           }
         // The temperature each point ended its last step at (heat scenes).
         for (unsigned int q = 0; q < n_q; ++q)
-          data.push_back(material_temperature_old[cell->active_cell_index() * n_q + q]);
+          data.push_back(material_temperature_old(cell, q));
         std::vector<char> bytes(data.size() * sizeof(double));
         std::memcpy(bytes.data(), data.data(), bytes.size());
         return bytes;
@@ -90,11 +90,10 @@ namespace anvil
             const std::size_t   size = static_cast<std::size_t>(data.at(k++));
             std::vector<double> state(data.begin() + k, data.begin() + k + size);
             k += size;
-            points[cell->active_cell_index() * n_q + q]->load_state(state);
+            points(cell, q)->load_state(state);
           }
         for (unsigned int q = 0; q < n_q; ++q)
-          material_temperature_old[cell->active_cell_index() * n_q + q] =
-            material_temperature[cell->active_cell_index() * n_q + q] = data.at(k++);
+          material_temperature_old(cell, q) = material_temperature(cell, q) = data.at(k++);
       });
 
     owned_solution           = owned_old_solution;

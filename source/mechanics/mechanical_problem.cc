@@ -15,6 +15,10 @@
 #include <anvil/core/scene.h>
 #include <anvil/material/kinematics.h>
 #include <anvil/contact/contact_problem.h>
+#include <anvil/core/instantiate.h>
+#include <anvil/mechanics/assembly_mapping.h>
+#include <anvil/mechanics/element_formulation.h>
+#include <anvil/material/kinematics.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
 #include <chrono>
@@ -25,155 +29,6 @@
 namespace anvil
 {
   using namespace dealii;
-
-  template <int dim>
-  void MechanicalProblem<dim>::Parameters::declare_parameters(ParameterHandler &prm)
-  {
-    prm.enter_subsection("Mechanics");
-    prm.declare_entry("Polynomial degree", "1", Patterns::Integer(1, 2),
-                      "Degree of the displacement elements: 1 (Q1) or 2 (Q2).");
-    prm.declare_entry("Element", "F-bar", Patterns::Selection("F-bar|standard"),
-                      "F-bar: the dilatation of each Q1 cell is its centre's (de Souza Neto et al. "
-                      "1996), so isochoric plastic flow does not lock (seed sec. 3.1: constant "
-                      "pressure elements); standard: plain displacement elements (Q1 locks in "
-                      "plastic flow; Q2 with Polynomial degree = 2).");
-    prm.declare_entry("Two-dimensional model", "plane strain",
-                      Patterns::Selection("plane strain|axisymmetric"),
-                      "For Dimension = 2: plane strain, or axisymmetric about the y axis with x the "
-                      "radius (x >= 0; hoop strain u_r/r; forces are per full ring, 2 pi r).");
-    prm.declare_entry("Temperature", "293", Patterns::Double(0),
-                      "Uniform temperature in K of a scene without a temperature field: the "
-                      "material laws are evaluated at it.");
-    prm.declare_entry("Gravity", "", Patterns::Anything(),
-                      "Body force per unit mass as a vector 'gx, gy[, gz]' in mm/s^2 (e.g. 0, -9810); "
-                      "empty: none.");
-    prm.declare_entry("Maximum plastic strain increment", "0", Patterns::Double(0),
-                      "Cut the step back if any point's equivalent plastic strain grows by more than "
-                      "this in one step (dimensionless; 0: no limit).");
-    prm.enter_subsection("Dynamics");
-    prm.declare_entry("Type", "quasi-static", Patterns::Selection("quasi-static|implicit"),
-                      "quasi-static: no inertia; implicit: generalized-alpha time integration of "
-                      "M a + f_int = f_ext (Chung & Hulbert 1993) with force averaging.");
-    prm.declare_entry("Spectral radius", "1", Patterns::Double(0, 1),
-                      "rho_inf in [0, 1]: 1 conserves energy (trapezoidal rule, the seed's mid-point "
-                      "member); smaller values damp the highest frequencies (0.8 is common).");
-    prm.declare_entry("Mass", "consistent", Patterns::Selection("consistent|lumped"),
-                      "Consistent or row-sum lumped mass matrix.");
-    prm.declare_entry("Initial velocity", "", Patterns::Anything(),
-                      "'ux = expr, uy = expr[, uz = expr]' in mm/s, expressions in x, y, z (mm); "
-                      "empty: at rest. An impact is an initial velocity.");
-    prm.leave_subsection();
-    prm.enter_subsection("Newton");
-    prm.declare_entry("Maximum iterations", "15", Patterns::Integer(1),
-                      "Newton iterations per time step before the step is cut back.");
-    prm.declare_entry("Residual tolerance", "1e-8", Patterns::Double(0),
-                      "Relative residual tolerance: |R| <= tol * max(|f_int|, |f_ext|, |M a|, |R_0|), R_0 the first residual of the step (dimensionless).");
-    prm.declare_entry("Absolute residual tolerance", "1e-12", Patterns::Double(0),
-                      "Residual norm in N below which a step is converged whatever the scale.");
-    prm.declare_entry("Displacement tolerance", "1e-8", Patterns::Double(0),
-                      "Relative increment tolerance: the next correction, estimated as the last one "
-                      "times the residual's contraction, <= tol * |Δu of the step| (dimensionless).");
-    prm.declare_entry("Extrapolate", "true", Patterns::Bool(),
-                      "Start each step from the last step's increment scaled to the new step "
-                      "(linear extrapolation in time) instead of the committed configuration.");
-    prm.declare_entry("Check tangent", "false", Patterns::Bool(),
-                      "Compare the assembled tangent with central finite differences of the "
-                      "residual at every Newton iteration and print the relative error (slow; "
-                      "for debugging new material laws).");
-    prm.declare_entry("Absolute displacement tolerance", "0", Patterns::Double(0),
-                      "Correction norm in mm below which the increment test passes whatever the "
-                      "step (0: only the relative test and the round-off floor).");
-    prm.declare_entry("Line search", "true", Patterns::Bool(),
-                      "Backtrack (halve the Newton update, up to 5 times) while the residual grows.");
-    prm.leave_subsection();
-    prm.enter_subsection("Linear solver");
-    prm.declare_entry("Type", "automatic", Patterns::Selection("automatic|direct|iterative"),
-                      "direct: sparse LU (Amesos KLU); iterative: GMRES with algebraic multigrid "
-                      "(Trilinos ML); automatic: direct below 'Direct solver limit' DoFs.");
-    prm.declare_entry("Tolerance", "1e-10", Patterns::Double(0),
-                      "Relative tolerance of the iterative solver (dimensionless).");
-    prm.declare_entry("Maximum iterations", "1000", Patterns::Integer(1),
-                      "Iterations of the iterative solver before the step is cut back.");
-    prm.declare_entry("Direct solver limit", "200000", Patterns::Integer(0),
-                      "Number of DoFs up to which 'automatic' chooses the direct solver.");
-    prm.leave_subsection();
-    prm.leave_subsection();
-  }
-
-  template <int dim>
-  void MechanicalProblem<dim>::Parameters::parse_parameters(ParameterHandler &prm, const Scene &scene)
-  {
-    prm.enter_subsection("Mechanics");
-    polynomial_degree = prm.get_integer("Polynomial degree");
-    f_bar             = prm.get("Element") == "F-bar";
-    axisymmetric      = dim == 2 && prm.get("Two-dimensional model") == "axisymmetric";
-    temperature       = prm.get_double("Temperature");
-    gravity           = prm.get("Gravity");
-    maximum_plastic_increment = prm.get_double("Maximum plastic strain increment");
-    prm.enter_subsection("Dynamics");
-    dynamic          = prm.get("Type") == "implicit";
-    spectral_radius  = prm.get_double("Spectral radius");
-    lumped_mass      = prm.get("Mass") == "lumped";
-    initial_velocity = prm.get("Initial velocity");
-    prm.leave_subsection();
-    for (const auto &assignment : split_outside_parentheses(initial_velocity, ','))
-      {
-        if (assignment.empty())
-          continue;
-        const std::string path = "Mechanics/Dynamics/Initial velocity";
-        const auto        eq   = assignment.find('=');
-        const std::string c    = eq == std::string::npos ? "" : trim(assignment.substr(0, eq));
-        bool              ok   = false;
-        for (unsigned int d = 0; d < dim; ++d)
-          ok = ok || c == std::string("u") + "xyz"[d];
-        if (!ok)
-          scene.fail(path, "'" + assignment + "' should be " +
-                             (dim == 2 ? "ux = expr or uy = expr" : "ux, uy or uz = expr") + " (mm/s)");
-        parse_expression<dim>(trim(assignment.substr(eq + 1)), scene, path);
-      }
-    // Check the vectors now (one-line errors before any work).
-    if (!gravity.empty())
-      {
-        const auto parts = split_outside_parentheses(gravity, ',');
-        bool       ok    = parts.size() == dim;
-        for (const auto &x : parts)
-          try
-            {
-              std::size_t used = 0;
-              std::stod(x, &used);
-              ok = ok && used == x.size();
-            }
-          catch (...)
-            {
-              ok = false;
-            }
-        if (!ok)
-          scene.fail("Mechanics/Gravity", "= '" + gravity + "': expected " + std::to_string(dim) +
-                                            " numbers 'gx, gy" + (dim == 3 ? ", gz'" : "'") + " in mm/s^2");
-      }
-    prm.enter_subsection("Newton");
-    max_iterations              = prm.get_integer("Maximum iterations");
-    residual_tolerance          = prm.get_double("Residual tolerance");
-    absolute_residual_tolerance = prm.get_double("Absolute residual tolerance");
-    displacement_tolerance      = prm.get_double("Displacement tolerance");
-    absolute_displacement_tolerance = prm.get_double("Absolute displacement tolerance");
-    line_search                 = prm.get_bool("Line search");
-    check_tangent               = prm.get_bool("Check tangent");
-    extrapolate                 = prm.get_bool("Extrapolate");
-    prm.leave_subsection();
-    prm.enter_subsection("Linear solver");
-    linear_solver         = prm.get("Type");
-    linear_tolerance      = prm.get_double("Tolerance");
-    linear_max_iterations = prm.get_integer("Maximum iterations");
-    direct_solver_limit   = prm.get_integer("Direct solver limit");
-    prm.leave_subsection();
-    prm.leave_subsection();
-    if (f_bar && polynomial_degree != 1)
-      scene.fail("Mechanics/Element", "is F-bar, which is a Q1 element: use Element = standard "
-                                      "with Polynomial degree = 2");
-    if (dim == 3 && prm.get("Dimension") == "3")
-      axisymmetric = false;
-  }
 
   template <int dim>
   MechanicalProblem<dim>::MechanicalProblem(
@@ -195,13 +50,36 @@ namespace anvil
     , dof_handler(triangulation)
     , quadrature(parameters.polynomial_degree + 1)
     , face_quadrature(parameters.polynomial_degree + 1)
-  {}
+  {
+    formulation =
+      std::make_unique<const MechanicsAssembly::Formulation<dim>>(fe, axisymmetric, f_bar);
+    assembly_mapping = std::make_unique<MechanicsAssembly::AssemblyMapping<dim>>();
+  }
+
+  template <int dim>
+  MechanicalProblem<dim>::~MechanicalProblem() = default;
+
+  template <int dim>
+  Tensor<2, 3> MechanicalProblem<dim>::deformation_gradient(const Tensor<2, dim> &grad_u,
+                                                            const double          radial_displacement,
+                                                            const double          radius) const
+  {
+    return formulation->deformation_gradient(grad_u, radial_displacement, radius);
+  }
 
   template <int dim>
   void MechanicalProblem<dim>::setup()
   {
     TimerOutput::Scope t(timer, "Mechanics: setup");
     dof_handler.distribute_dofs(fe);
+    {
+      // The assembly's cells in the order of the loop (WorkStream's too).
+      std::vector<typename Triangulation<dim>::cell_iterator> cells;
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          cells.push_back(cell);
+      assembly_mapping->reinit(cells, triangulation.n_active_cells());
+    }
     locally_owned_dofs = dof_handler.locally_owned_dofs();
     DoFTools::extract_locally_relevant_dofs(dof_handler, locally_relevant_dofs);
 
@@ -328,11 +206,10 @@ namespace anvil
   void MechanicalProblem<dim>::setup_quadrature_point_data()
   {
     const unsigned int n_q = quadrature.size();
-    points.clear();
-    points.resize(triangulation.n_active_cells() * n_q);
-    heat_sources.assign(triangulation.n_active_cells() * n_q, 0.);
-    thermoelastic_sources = heat_sources;
-    material_temperature.assign(heat_sources.size(), parameters.temperature);
+    points.reinit(triangulation, n_q);
+    heat_sources.reinit(triangulation, n_q, 0.);
+    thermoelastic_sources.reinit(triangulation, n_q, 0.);
+    material_temperature.reinit(triangulation, n_q, parameters.temperature);
     material_temperature_old = material_temperature;
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -342,66 +219,8 @@ namespace anvil
             throw InputError("internal: no material for body id " +
                              std::to_string(cell->material_id()));
           for (unsigned int q = 0; q < n_q; ++q)
-            points[cell->active_cell_index() * n_q + q] = m->second->create_point();
+            points(cell, q) = m->second->create_point();
         }
-  }
-
-  template <int dim>
-  std::string MechanicalProblem<dim>::material_failure_message() const
-  {
-    // The first rank that failed tells (all ranks return the same text).
-    const unsigned int rank  = Utilities::MPI::this_mpi_process(mpi_communicator);
-    const unsigned int first = Utilities::MPI::min(material_failure.empty() ?
-                                                     Utilities::MPI::n_mpi_processes(mpi_communicator) :
-                                                     rank,
-                                                   mpi_communicator);
-    if (first == Utilities::MPI::n_mpi_processes(mpi_communicator))
-      return "an element inverted (J <= 0)";
-    std::vector<char> text(material_failure.begin(), material_failure.end());
-    text = Utilities::MPI::broadcast(mpi_communicator, text, first);
-    return std::string(text.begin(), text.end());
-  }
-
-  template <int dim>
-  double MechanicalProblem<dim>::residual_norm() const
-  {
-    return system_rhs.l2_norm();
-  }
-
-  template <int dim>
-  unsigned int MechanicalProblem<dim>::solve_linear_system(TrilinosWrappers::MPI::Vector &du)
-  {
-    TimerOutput::Scope t(timer, "Mechanics: linear solve");
-    const bool direct = parameters.linear_solver == "direct" ||
-                        (parameters.linear_solver == "automatic" &&
-                         dof_handler.n_dofs() <= parameters.direct_solver_limit);
-    if (direct)
-      {
-        SolverControl                  control(1, 0);
-        TrilinosWrappers::SolverDirect solver(control,
-                                              TrilinosWrappers::SolverDirect::AdditionalData(
-                                                false, "Amesos_Klu"));
-        solver.solve(system_matrix, du, system_rhs);
-        return 1;
-      }
-    TrilinosWrappers::PreconditionAMG                 amg;
-    TrilinosWrappers::PreconditionAMG::AdditionalData data;
-    std::vector<std::vector<bool>>                    constant_modes;
-    DoFTools::extract_constant_modes(dof_handler, ComponentMask(dim, true), constant_modes);
-    data.constant_modes        = constant_modes;
-    data.elliptic              = true;
-    data.higher_order_elements = parameters.polynomial_degree > 1;
-    data.smoother_sweeps       = 2;
-    data.aggregation_threshold = 0.02;
-    amg.initialize(system_matrix, data);
-    SolverControl control(parameters.linear_max_iterations,
-                          parameters.linear_tolerance * system_rhs.l2_norm());
-    // Restart 30: AMG converges in 10–40 iterations here, and each Krylov
-    // vector costs 8 bytes per DoF (100 would be 800 B/DoF).
-    SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
-      control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(30));
-    gmres.solve(system_matrix, du, system_rhs, amg);
-    return control.last_step();
   }
 
   template <int dim>
@@ -424,245 +243,6 @@ namespace anvil
                     !c.is_constrained(dofs[i]) && locally_relevant_dofs.is_element(dofs[i]))
                   c.add_line(dofs[i]);
         }
-  }
-
-  template <int dim>
-  double MechanicalProblem<dim>::tangent_error()
-  {
-    // Random direction on the free dofs; K is assembled at the current u.
-    TrilinosWrappers::MPI::Vector du(locally_owned_dofs, mpi_communicator), Kdu(du), r_plus(du);
-    for (const auto i : locally_owned_dofs)
-      du(i) = std::sin(1.0 + 7.3 * i);
-    du.compress(VectorOperation::insert);
-    constraints.set_zero(du);
-    assemble(true, current_time);
-    system_matrix.vmult(Kdu, du);
-    constraints.set_zero(Kdu);
-    const TrilinosWrappers::MPI::Vector u0 = owned_solution;
-    const double h = 1e-7 * std::max(1.0, u0.l2_norm()) / std::max(du.l2_norm(), 1e-300);
-    owned_solution.add(h, du);
-    solution = owned_solution;
-    assemble(false, current_time);
-    r_plus = system_rhs; // −R(u + h du)
-    owned_solution = u0;
-    owned_solution.add(-h, du);
-    solution = owned_solution;
-    assemble(false, current_time);
-    r_plus -= system_rhs; // −R(u+) + R(u−)
-    r_plus /= -2 * h;     // (R(u+) − R(u−)) / 2h ≈ K du
-    owned_solution = u0;
-    solution       = owned_solution;
-    r_plus -= Kdu;
-    return r_plus.l2_norm() / std::max(Kdu.l2_norm(), 1e-300);
-  }
-
-  template <int dim>
-  typename MechanicalProblem<dim>::StepResult
-  MechanicalProblem<dim>::solve_step(const double time_old, const double time_new,
-                                     const bool from_last_solution)
-  {
-    StepResult result;
-    current_time_step = time_new - time_old;
-    current_time      = time_new;
-    if (contact)
-      {
-        contact->begin_step(time_old, time_new, old_solution);
-        if (contact->couplings_changed())
-          setup_matrix();
-      }
-
-    // Predictor: the first Newton iteration starts from the committed
-    // configuration and imposes the jump of the prescribed displacements as
-    // inhomogeneous constraints, so the whole body follows the boundary
-    // (moving only the boundary nodes would invert the cells next to it when
-    // the jump exceeds their size).
-    //
-    // The free dofs start from the last step's increment scaled to this step
-    // (linear extrapolation in time), which puts yielding points on their
-    // plastic branch from the first iteration; if that inverts an element,
-    // from the committed configuration.
-    // Again on the same step (iterated staggered): from the last solution,
-    // which already satisfies the step's boundary values.
-    if (!from_last_solution)
-      owned_solution = owned_old_solution;
-    if (!from_last_solution && parameters.extrapolate && previous_time_step > 0)
-      {
-        owned_solution.add(current_time_step / previous_time_step, previous_increment);
-        solution = owned_solution;
-        if (!assemble(false, time_new))
-          owned_solution = owned_old_solution;
-      }
-    solution = owned_solution;
-    predictor_constraints.clear();
-    predictor_constraints.reinit(constraint_lines);
-    DoFTools::make_hanging_node_constraints(dof_handler, predictor_constraints);
-    make_axis_constraints(predictor_constraints);
-    {
-      std::map<types::global_dof_index, double> values;
-      boundary_conditions.interpolate(dof_handler, time_new, values);
-      for (const auto &[dof, value] : values)
-        if (locally_relevant_dofs.is_element(dof) && !predictor_constraints.is_constrained(dof))
-          {
-            predictor_constraints.add_line(dof);
-            predictor_constraints.set_inhomogeneity(dof, value - solution(dof));
-          }
-      std::map<types::global_dof_index, double> increments;
-      boundary_conditions.interpolate_velocity_increment(dof_handler, time_old, time_new, increments);
-      for (const auto &[dof, increment] : increments)
-        if (locally_relevant_dofs.is_element(dof) && !predictor_constraints.is_constrained(dof))
-          {
-            predictor_constraints.add_line(dof);
-            predictor_constraints.set_inhomogeneity(dof, increment + old_solution(dof) - solution(dof));
-          }
-    }
-    add_remote_constraints(predictor_constraints);
-    predictor_constraints.close();
-    active_constraints = &predictor_constraints;
-    double largest_jump = 0;
-    for (const auto &line : predictor_constraints.get_lines())
-      largest_jump = std::max(largest_jump, std::abs(line.inhomogeneity));
-    const bool has_jump = Utilities::MPI::max(largest_jump, mpi_communicator) > 0;
-
-    TrilinosWrappers::MPI::Vector du(locally_owned_dofs, mpi_communicator);
-    TrilinosWrappers::MPI::Vector u_start(locally_owned_dofs, mpi_communicator);
-    double last_increment = -1;
-
-    for (unsigned int it = 0;; ++it)
-      {
-        if (!assemble(true, time_new))
-          {
-            result.failure = material_failure_message();
-            return result;
-          }
-        const double r = residual_norm();
-        if (!std::isfinite(r))
-          {
-            result.failure = "the residual is not a number";
-            return result;
-          }
-        result.residuals.push_back(r);
-        if (parameters.check_tangent)
-          {
-            const double e = tangent_error();
-            if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-              std::cout << "    tangent check: |K du - FD| / |K du| = " << e << std::endl;
-            assemble(true, time_new); // restore K and R at u
-          }
-
-        // Force scale: the forces of the step, and the first residual of the
-        // step (in dynamics the inertia of the predictor dominates it, and
-        // round-off of M ã is relative to it).
-        const double scale = std::max({internal_force.l2_norm(), external_force.l2_norm(),
-                                       inertia_force.l2_norm(), result.residuals.front()});
-        TrilinosWrappers::MPI::Vector step_u(owned_solution);
-        step_u -= owned_old_solution;
-        const double du_scale = step_u.l2_norm();
-        const bool residual_ok =
-          r <= parameters.absolute_residual_tolerance || r <= parameters.residual_tolerance * scale;
-        // The correction that would come next is about the last one times the
-        // residual's contraction (quadratic convergence makes this sharp):
-        // test that instead of paying one more solve to see it.
-        const double r_previous = result.residuals.size() > 1 ?
-                                    result.residuals[result.residuals.size() - 2] : r;
-        const double predicted_increment =
-          last_increment * std::min(1.0, r / std::max(r_previous, 1e-300));
-        // Corrections cannot fall below round-off of the displacement itself.
-        // (positions x = X + u carry the digits, so the scale is the mesh size).
-        const double increment_floor =
-          100 * std::numeric_limits<double>::epsilon() *
-          (owned_solution.l2_norm() + std::sqrt(double(dof_handler.n_dofs())) * mesh_diameter);
-        const bool   increment_ok =
-          (last_increment >= 0 &&
-           predicted_increment <= std::max({parameters.displacement_tolerance * du_scale,
-                                            parameters.absolute_displacement_tolerance,
-                                            increment_floor})) ||
-          r <= parameters.absolute_residual_tolerance;
-        // Corrections a thousand times below the increment tolerance mean the
-        // residual sits on its round-off floor: accept.
-        const bool stagnated =
-          last_increment >= 0 &&
-          last_increment <= std::max(1e-3 * parameters.displacement_tolerance * du_scale,
-                                     increment_floor) &&
-          r <= 1e3 * parameters.residual_tolerance * scale;
-        if ((residual_ok && (increment_ok || it == 0) && !(it == 0 && has_jump)) || stagnated)
-          {
-            result.converged  = true;
-            result.iterations = it;
-            return result;
-          }
-        if (it >= parameters.max_iterations)
-          {
-            result.iterations = it;
-            result.failure    = "Newton did not converge in " + std::to_string(it) +
-                             " iterations (|R| = " + Utilities::to_string(r, 3) + " N)";
-            return result;
-          }
-
-        du = 0;
-        try
-          {
-            result.linear_iterations += solve_linear_system(du);
-          }
-        catch (const std::exception &e)
-          {
-            result.failure = "the linear solver failed";
-            return result;
-          }
-        active_constraints->distribute(du);
-        active_constraints = &constraints;
-        last_increment     = du.l2_norm();
-        result.increments.push_back(last_increment);
-
-        // Line search on the energy norm s(α) = δu · R(u + α δu) (Crisfield):
-        // the residual norm itself grows in the first iterations of large
-        // rotations although the step is good, so it is a poor merit function.
-        // A full step is kept unless |s(1)| > 0.8 |s(0)| or an element inverts;
-        // then α follows the secant root of s, within [0.1, 1].
-        u_start         = owned_solution;
-        double       alpha = 1;
-        const double s0    = -(du * system_rhs);
-        for (unsigned int ls = 0;; ++ls)
-          {
-            owned_solution = u_start;
-            owned_solution.add(alpha, du);
-            solution = owned_solution;
-            // The first update carries the boundary jump: take it whole.
-            // Near convergence (and on the round-off floor) s(α) is noise.
-            if (!parameters.line_search || ls == 5 || (it == 0 && has_jump) || residual_ok)
-              break;
-            const bool ok = assemble(false, time_new);
-            if (!ok)
-              {
-                alpha *= 0.5;
-                continue;
-              }
-            const double s1 = -(du * system_rhs);
-            if (!std::isfinite(s1))
-              {
-                alpha *= 0.5;
-                continue;
-              }
-            if (std::abs(s1) <= 0.8 * std::abs(s0))
-              break;
-            // Secant root of s between (0, s0) and (α, s1). If s has not changed
-            // sign and grows in magnitude the root lies beyond α: keep α.
-            const double next = alpha * s0 / (s0 - s1);
-            if (!(next > 0) || next >= alpha)
-              break;
-            alpha = std::max(0.1 * alpha, next);
-          }
-        result.line_search_steps.push_back(alpha);
-      }
-  }
-
-  template <int dim>
-  void MechanicalProblem<dim>::revert_step()
-  {
-    for (auto &p : points)
-      if (p)
-        p->revert();
-    owned_solution = owned_old_solution;
-    solution       = owned_solution;
   }
 
   template <int dim>
@@ -720,7 +300,7 @@ namespace anvil
           double J = 0, eqps = 0;
           for (unsigned int q = 0; q < n_q; ++q)
             {
-              const auto &p = *points[cell->active_cell_index() * n_q + q];
+              const auto &p = *points(cell, q);
               s += p.stress() / n_q;
               eqps += p.equivalent_plastic_strain() / n_q;
               const double R  = axisymmetric ? fe_values.quadrature_point(q)[0] : 1.;
@@ -771,9 +351,8 @@ namespace anvil
             const unsigned int n_q = quadrature.size();
             for (unsigned int k = 0; k < n_q; ++k)
               {
-                stress += points[cell->active_cell_index() * n_q + k]->stress() / n_q;
-                plastic_strain +=
-                  points[cell->active_cell_index() * n_q + k]->equivalent_plastic_strain() / n_q;
+                stress += points(cell, k)->stress() / n_q;
+                plastic_strain += points(cell, k)->equivalent_plastic_strain() / n_q;
               }
           }
       }
@@ -798,9 +377,9 @@ namespace anvil
   {
     return dof_handler.memory_consumption() + system_matrix.memory_consumption() +
            8 * solution.memory_consumption() + constraints.memory_consumption() +
-           points.size() * (sizeof(void *) + 2 * sizeof(SymmetricTensor<2, 3>) + 16);
+           points.raw().size() *
+             (sizeof(std::shared_ptr<MaterialPoint>) + 2 * sizeof(SymmetricTensor<2, 3>) + 16);
   }
 
-  template class MechanicalProblem<2>;
-  template class MechanicalProblem<3>;
+  ANVIL_INSTANTIATE_CLASS(MechanicalProblem)
 } // namespace anvil

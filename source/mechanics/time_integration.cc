@@ -8,6 +8,7 @@
 #include <anvil/core/expression.h>
 #include <anvil/core/scene.h>
 #include <anvil/contact/contact_problem.h>
+#include <anvil/mechanics/assembly_kernels.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
 #include <cmath>
@@ -97,7 +98,7 @@ namespace anvil
               const double R = axisymmetric ? fe_values.quadrature_point(q)[0] : 1.;
               const double J = determinant(
                 deformation_gradient(grad_u[q], axisymmetric ? u_values[q][0] : 0., R));
-              const auto  &sigma = points[cell->active_cell_index() * n_q + q]->stress();
+              const auto  &sigma = points(cell, q)->stress();
               const double p     = trace(sigma) / 3;
               const auto   s     = deviator(sigma);
               energy += 0.5 * (p * p / m.bulk_modulus() + (s * s) / (2 * m.shear_modulus())) * J *
@@ -111,9 +112,8 @@ namespace anvil
   double MechanicalProblem<dim>::newmark_acceleration(const double u, const double u_old,
                                                       const double v_old, const double a_old) const
   {
-    const double dt = current_time_step;
-    return (u - u_old - dt * v_old) / (newmark_beta * dt * dt) -
-           (0.5 - newmark_beta) / newmark_beta * a_old;
+    return MechanicsAssembly::Inertia<dim>::newmark_acceleration(u, u_old, v_old, a_old,
+                                                                 current_time_step, newmark_beta);
   }
 
   template <int dim>
@@ -177,7 +177,7 @@ namespace anvil
       contact->commit();
     material_temperature_old = material_temperature;
     previous_time_step = current_time_step;
-    for (auto &p : points)
+    for (auto &p : points.raw())
       if (p)
         p->commit();
     owned_old_solution = owned_solution;
@@ -185,6 +185,74 @@ namespace anvil
     internal_force_old = internal_force;
     external_force_old = external_force;
     reaction_force_old = reaction_force;
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::lumped_mass(TrilinosWrappers::MPI::Vector &m) const
+  {
+    FEValues<dim> fe_values(mapping, fe, quadrature, update_values | update_JxW_values |
+                                                       update_quadrature_points);
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    Vector<double>                       local(fe.n_dofs_per_cell());
+    m = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(dofs);
+          const double rho = materials.at(cell->material_id())->density();
+          local            = 0;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const double w = fe_values.JxW(q) *
+                               (axisymmetric ? 2 * numbers::PI * fe_values.quadrature_point(q)[0] : 1.);
+              for (unsigned int a = 0; a < dofs.size(); ++a)
+                local(a) += rho *
+                            fe_values.shape_value_component(a, q, fe.system_to_component_index(a).first) * w;
+            }
+          m.add(dofs, local);
+        }
+    m.compress(VectorOperation::add);
+  }
+
+  template <int dim>
+  double MechanicalProblem<dim>::kinetic_energy(const TrilinosWrappers::MPI::Vector &v) const
+  {
+    FEValues<dim> fe_values(mapping, fe, quadrature, update_values | update_JxW_values |
+                                                       update_quadrature_points);
+    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+    const unsigned int                   n = fe.n_dofs_per_cell();
+    std::vector<double>                  local(n), lumped(n);
+    double                               energy = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(dofs);
+          for (unsigned int a = 0; a < n; ++a)
+            local[a] = v(dofs[a]);
+          const double rho = materials.at(cell->material_id())->density();
+          std::fill(lumped.begin(), lumped.end(), 0.);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const double w = fe_values.JxW(q) *
+                               (axisymmetric ? 2 * numbers::PI * fe_values.quadrature_point(q)[0] : 1.);
+              Tensor<1, dim> vq;
+              for (unsigned int a = 0; a < n; ++a)
+                {
+                  const unsigned int c  = fe.system_to_component_index(a).first;
+                  const double       Na = fe_values.shape_value_component(a, q, c);
+                  vq[c] += local[a] * Na;
+                  lumped[a] += rho * Na * w;
+                }
+              if (!parameters.lumped_mass)
+                energy += 0.5 * rho * (vq * vq) * w;
+            }
+          if (parameters.lumped_mass)
+            for (unsigned int a = 0; a < n; ++a)
+              energy += 0.5 * lumped[a] * local[a] * local[a];
+        }
+    return Utilities::MPI::sum(energy, mpi_communicator);
   }
 
   template void MechanicalProblem<2>::setup_dynamics();
@@ -197,4 +265,8 @@ namespace anvil
   template void MechanicalProblem<3>::commit_step();
   template double MechanicalProblem<2>::Energy::balance_error() const;
   template double MechanicalProblem<3>::Energy::balance_error() const;
+  template void MechanicalProblem<2>::lumped_mass(TrilinosWrappers::MPI::Vector &) const;
+  template void MechanicalProblem<3>::lumped_mass(TrilinosWrappers::MPI::Vector &) const;
+  template double MechanicalProblem<2>::kinetic_energy(const TrilinosWrappers::MPI::Vector &) const;
+  template double MechanicalProblem<3>::kinetic_energy(const TrilinosWrappers::MPI::Vector &) const;
 } // namespace anvil

@@ -15,7 +15,7 @@ namespace anvil
   namespace
   {
     const char *usage =
-      "usage: anvil SCENE.prm [--set 'Section/Entry=value']... [--check]\n"
+      "usage: anvil SCENE.prm [--set 'Section/Entry=value']... [--threads N] [--check]\n"
       "       anvil --print-parameters [SCENE.prm]   every parameter as a .prm file\n"
       "       anvil --help                           this text and every parameter, documented\n"
       "       anvil --material-point POINT.prm [--set 'Section/Entry=value']... [--check]\n"
@@ -25,6 +25,9 @@ namespace anvil
       "  SCENE.prm      the scene to run (deal.II ParameterHandler format)\n"
       "  --set P=V      override entry P (a path like 'Time/End time') with V; repeatable\n"
       "  --check        read and check the scene and its mesh, then stop\n"
+      "  --threads N    threads per process for the assembly (default: the cores given\n"
+      "                 to the process, shared among the MPI processes of a node;\n"
+      "                 DEAL_II_NUM_THREADS caps it)\n"
       "  --material-point  the file is a material-point driver file (Material, Path,\n"
       "                 Output), not a scene: one point along prescribed strain, stress,\n"
       "                 deformation gradient and temperature paths, written to a CSV\n"
@@ -101,9 +104,48 @@ namespace anvil
     }
   } // namespace
 
+  namespace
+  {
+    unsigned int parse_threads(const std::string &value)
+    {
+      try
+        {
+          std::size_t used = 0;
+          const int   t    = std::stoi(value, &used);
+          if (used == value.size() && t > 0)
+            return t;
+        }
+      catch (...)
+        {
+        }
+      throw InputError("--threads: expected a positive number of threads, not '" + value + "'");
+    }
+
+    // --threads N, read before MPI starts: deal.II sets the thread limit in
+    // MPI_InitFinalize. Default: deal.II chooses (the cores of the node
+    // divided among its MPI processes). A bad value is reported below.
+    unsigned int thread_limit(int argc, char **argv)
+    {
+      unsigned int n = numbers::invalid_unsigned_int;
+      for (int i = 1; i < argc; ++i)
+        try
+          {
+            const std::string a = argv[i];
+            if (a == "--threads" && i + 1 < argc)
+              n = parse_threads(argv[i + 1]);
+            else if (a.rfind("--threads=", 0) == 0)
+              n = parse_threads(a.substr(10));
+          }
+        catch (const InputError &)
+          {
+          }
+      return n;
+    }
+  } // namespace
+
   int run_anvil(int argc, char **argv)
   {
-    Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+    Utilities::MPI::MPI_InitFinalize mpi(argc, argv, thread_limit(argc, argv));
     const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
 
     std::string                                        filename;
@@ -138,6 +180,14 @@ namespace anvil
               }
             else if (a.rfind("--set=", 0) == 0)
               overrides.push_back(Scene::parse_override(a.substr(6)));
+            else if (a == "--threads")
+              {
+                if (i + 1 >= argc)
+                  throw InputError("--threads: expected a number of threads after it");
+                parse_threads(argv[++i]);
+              }
+            else if (a.rfind("--threads=", 0) == 0)
+              parse_threads(a.substr(10));
             else if (a.rfind("-", 0) == 0)
               throw InputError("unknown option '" + a + "' (see anvil --help)");
             else if (filename.empty())

@@ -1,4 +1,5 @@
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/utilities.h>
 
 #include <anvil/core/input_error.h>
@@ -349,7 +350,8 @@ namespace anvil
     if (physics.heat())
       pcout << physics.heat()->n_dofs() << " temperature DoFs, ";
     pcout << coupling << ", " << Utilities::MPI::n_mpi_processes(mpi_communicator)
-          << " process(es) -> " << output_dir << std::endl;
+          << " process(es) x " << MultithreadInfo::n_threads() << " thread(s) -> " << output_dir
+          << std::endl;
   }
 
   template <int dim>

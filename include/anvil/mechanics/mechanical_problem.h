@@ -14,6 +14,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <anvil/core/named_values.h>
+#include <anvil/core/point_data.h>
 #include <anvil/material/material_point.h>
 #include <anvil/mechanics/boundary_conditions.h>
 
@@ -28,6 +29,16 @@ namespace anvil
   template <int dim>
   class ContactProblem;
 
+  namespace MechanicsAssembly
+  {
+    template <int dim>
+    class Formulation;
+    template <int dim>
+    struct Context;
+    template <int dim>
+    class AssemblyMapping;
+  } // namespace MechanicsAssembly
+
   class Scene;
 
   /**
@@ -40,6 +51,10 @@ namespace anvil
    * Integrals over the current configuration ∫ σ : ∇ₓδv dv are evaluated on
    * the reference mesh as ∫ P : ∇_X δv dV (P = Jσ F⁻ᵀ); the mesh does not move,
    * the displacement is the unknown.
+   *
+   * The assembly runs cell by cell on the threads of the process (deal.II's
+   * WorkStream), one kernel per term of the weak form (assembly_kernels.h);
+   * the result does not depend on the number of threads.
    */
   template <int dim>
   class MechanicalProblem
@@ -100,6 +115,8 @@ namespace anvil
                       const std::map<dealii::types::material_id, std::shared_ptr<const MaterialModel>> &materials,
                       dealii::TimerOutput                                                  &timer);
 
+    ~MechanicalProblem();
+
     void setup();
 
     /// Solve for the configuration at @p time_new from the committed one at @p time_old.
@@ -141,6 +158,7 @@ namespace anvil
     /**
      * Temperatures at the quadrature points of a cell, at t_n+1 and t_n, for
      * a coupled scene (without it the uniform Mechanics/Temperature is used).
+     * Called from the assembly's threads: it must be reentrant (read only).
      */
     using TemperatureField = std::function<void(const typename dealii::Triangulation<dim>::active_cell_iterator &,
                                                 std::vector<double> &T)>;
@@ -156,22 +174,24 @@ namespace anvil
       temperature_field = field;
       adiabatic_split   = adiabatic;
     }
-    /// The temperature every point starts from (heat scenes).
+    /// The temperature every point starts from (heat scenes), per point in
+    /// PointData order (cell by active cell index, then quadrature point).
     void set_initial_point_temperatures(const std::vector<double> &T)
     {
-      material_temperature = material_temperature_old = T;
+      material_temperature.raw()     = T;
+      material_temperature_old.raw() = T;
     }
     /// χẆirr + Ẇthel of the last assembly at quadrature point q of a cell (MPa/s = mW/mm³).
     double heat_source(const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
                        unsigned int q) const
     {
-      return heat_sources[cell->active_cell_index() * quadrature.size() + q];
+      return heat_sources(cell, q);
     }
     /// Its thermoelastic part Ẇthel alone (the rest is plastic heat χẆirr).
     double thermoelastic_source(const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
                                 unsigned int q) const
     {
-      return thermoelastic_sources[cell->active_cell_index() * quadrature.size() + q];
+      return thermoelastic_sources(cell, q);
     }
     const dealii::Quadrature<dim> &get_quadrature() const { return quadrature; }
 
@@ -210,12 +230,34 @@ namespace anvil
 
     /// Cells per second of the last full (matrix + residual) assembly on this rank.
     double last_assembly_rate() const { return assembly_rate; }
+
+    /**
+     * Assemble the tangent (with @p with_matrix) and −R at the current
+     * iterate of the last solve_step(), as Newton does: for tests and
+     * benchmarks (thread counts, timings). False if an element inverted.
+     */
+    bool assemble_system(const bool with_matrix) { return assemble(with_matrix, current_time); }
+    const dealii::TrilinosWrappers::SparseMatrix &get_system_matrix() const { return system_matrix; }
+    /// −R (constrained entries 0) of the last assembly.
+    const dealii::TrilinosWrappers::MPI::Vector &get_system_rhs() const { return system_rhs; }
     std::size_t memory_consumption() const;
 
   private:
     void setup_quadrature_point_data();
     /// Assemble −R into system_rhs (and K if @p with_matrix); false if an element inverted.
     bool assemble(bool with_matrix, double time);
+    /// What the assembly's kernels read (assembly_data.h).
+    MechanicsAssembly::Context<dim> assembly_context(bool with_matrix, double time);
+    /// The contact elements into the system, serially; false if the matrix must grow.
+    bool assemble_contact(bool with_matrix);
+    /// The first iterate of a step (extrapolated, or the last solution) and
+    /// the predictor constraints imposing the step's boundary values; true if
+    /// they jump (then the first update is taken whole).
+    bool predict(double time_old, double time_new, bool from_last_solution);
+    /// Step length α of the Newton update @p du (Crisfield's energy line
+    /// search); leaves the solution at u + α du. @p full_step: α = 1.
+    double line_search(const dealii::TrilinosWrappers::MPI::Vector &du, bool full_step,
+                       double time_new);
     unsigned int solve_linear_system(dealii::TrilinosWrappers::MPI::Vector &du);
     double       residual_norm() const;
     /// 3x3 F from the in-plane gradient (and the hoop stretch if axisymmetric).
@@ -243,7 +285,11 @@ namespace anvil
 
     const bool                axisymmetric, f_bar;
     dealii::FESystem<dim>     fe;
+    std::unique_ptr<const MechanicsAssembly::Formulation<dim>> formulation;
     dealii::MappingQ<dim>     mapping;
+    /// The same Q1 mapping for the threaded assembly: its values do not
+    /// depend on the order of the cells (assembly_mapping.h).
+    std::unique_ptr<MechanicsAssembly::AssemblyMapping<dim>> assembly_mapping;
     dealii::DoFHandler<dim>   dof_handler;
     dealii::QGauss<dim>       quadrature;
     dealii::QGauss<dim - 1>   face_quadrature;
@@ -260,21 +306,20 @@ namespace anvil
     dealii::TrilinosWrappers::MPI::Vector  solution, old_solution;       // ghosted
     dealii::TrilinosWrappers::MPI::Vector  owned_solution, owned_old_solution;
 
-    // One material point per quadrature point of each locally owned cell,
-    // indexed by active_cell_index * n_q_points + q.
-    std::vector<std::unique_ptr<MaterialPoint>> points;
+    // One material point per quadrature point of each locally owned cell.
+    PointData<std::shared_ptr<MaterialPoint>> points;
     ContactProblem<dim>                        *contact = nullptr;
     dealii::IndexSet                            constraint_lines; // relevant + contact surface dofs
     /// The matrix and its sparsity: the cells' couplings and the contact's.
     void setup_matrix();
     /// Lines for contact-surface dofs that this process does not see but their owner constrains.
     void add_remote_constraints(dealii::AffineConstraints<double> &c) const;
-    std::vector<double>                         heat_sources; // per point, last assembly
-    std::vector<double>                         thermoelastic_sources;
+    PointData<double>                           heat_sources; // per point, last assembly
+    PointData<double>                           thermoelastic_sources;
     TemperatureField                            temperature_field;
     bool                                        adiabatic_split = false;
     // The temperature each point ended its last update at (current and committed).
-    std::vector<double>                         material_temperature, material_temperature_old;
+    PointData<double>                           material_temperature, material_temperature_old;
     double step_internal_work = 0, step_plastic_work = 0, max_plastic_increment = 0;
     Energy energy_audit;
     dealii::TrilinosWrappers::MPI::Vector external_force_old, reaction_force, reaction_force_old;

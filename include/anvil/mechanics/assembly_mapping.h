@@ -1,0 +1,59 @@
+#pragma once
+
+#include <deal.II/fe/mapping_q.h>
+#include <deal.II/grid/tria.h>
+
+#include <vector>
+
+namespace anvil
+{
+  namespace MechanicsAssembly
+  {
+    /**
+     * The Q1 mapping of the assembly, made independent of the order in which
+     * a thread visits cells.
+     *
+     * deal.II's FEValues reuses the Jacobians, JxW and shape gradients of the
+     * previous cell it was reinit()ed on when the new cell is a translation
+     * of it (CellSimilarity::translation): on a regular mesh a serial loop
+     * computes them once per run of translated cells and keeps them, which
+     * differs from a fresh computation by round-off. With threads, each
+     * ScratchData sees another sequence of cells, so the bits would depend on
+     * the number of threads and on scheduling.
+     *
+     * This mapping gives every cell the values the serial loop gives it: it
+     * computes them at the first cell of the cell's run of translations in
+     * the loop's order (its "chain start", from reinit()) and then moves
+     * the quadrature points to the cell. The result depends on the cell
+     * alone, so the assembly is the serial loop's bit for bit on any number
+     * of threads.
+     */
+    template <int dim>
+    class AssemblyMapping : public dealii::MappingQ<dim>
+    {
+    public:
+      AssemblyMapping();
+      AssemblyMapping(const AssemblyMapping &other);
+
+      /// The chain starts for @p cells, the cells in the order of the serial
+      /// loop (FEValues would compare each with its predecessor).
+      void reinit(const std::vector<typename dealii::Triangulation<dim>::cell_iterator> &cells,
+                  unsigned int n_active_cells);
+
+      std::unique_ptr<dealii::Mapping<dim>> clone() const override;
+
+    protected:
+      dealii::CellSimilarity::Similarity
+      fill_fe_values(const typename dealii::Triangulation<dim>::cell_iterator &cell,
+                     dealii::CellSimilarity::Similarity                     cell_similarity,
+                     const dealii::Quadrature<dim>                          &quadrature,
+                     const typename dealii::Mapping<dim>::InternalDataBase  &internal_data,
+                     dealii::internal::FEValuesImplementation::MappingRelatedData<dim, dim>
+                       &output_data) const override;
+
+    private:
+      /// Per active cell index: the first cell of its run of translations.
+      std::vector<typename dealii::Triangulation<dim>::cell_iterator> chain_start;
+    };
+  } // namespace MechanicsAssembly
+} // namespace anvil

@@ -1,0 +1,95 @@
+#pragma once
+
+#include <deal.II/base/tensor.h>
+#include <deal.II/fe/fe.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <anvil/material/kinematics.h>
+
+#include <vector>
+
+namespace anvil
+{
+  namespace MechanicsAssembly
+  {
+    /**
+     * G_a = ∂F/∂u_a of one shape function at one point, sparse over the
+     * formulation's directions δF = e_k ⊗ e_L: the dim in-plane entries of
+     * its gradient, and for the radial shape functions of an axisymmetric
+     * element the hoop entry N_a/R.
+     */
+    struct ShapeGradient
+    {
+      unsigned int n = 0;
+      int          c[4]; // direction index (TangentDirections::kl)
+      double       v[4];
+    };
+
+    /**
+     * What is fixed for one mechanical problem: plane strain, axisymmetric or
+     * 3D, standard or F-bar, and the δF directions its linearisation needs.
+     * Read-only, shared by every thread of an assembly.
+     *
+     * The axisymmetric hoop term lives here: F₃₃ = 1 + u_r/R, the hoop entry
+     * N_a/R of ∂F/∂u_a, and the ring measure 2πR dR dZ.
+     */
+    template <int dim>
+    class Formulation
+    {
+    public:
+      Formulation(const dealii::FiniteElement<dim> &fe, bool axisymmetric, bool f_bar);
+
+      const bool axisymmetric, f_bar;
+      /// Only the in-plane block of F is active (plane strain: F₃₃ = 1).
+      const bool plane_strain;
+      /// F-bar exponent: F̄ = (J₀/J)^α F on the active block (α = 1/2 in
+      /// plane strain, 1/3 otherwise).
+      const double                    alpha;
+      const TangentDirections         directions;
+      const unsigned int              n_dofs;
+      /// Vector component of each shape function.
+      std::vector<unsigned int>       component;
+      /// Index of the direction (k, L) in `directions`, −1 if not used.
+      int                             where[3][3];
+
+      /// 3x3 F from the in-plane gradient (and the hoop stretch if axisymmetric).
+      dealii::Tensor<2, 3> deformation_gradient(const dealii::Tensor<2, dim> &grad_u,
+                                                double                        radial_displacement,
+                                                double                        radius) const;
+      /// F at point @p q of @p v from the cell's dof values (R: radius for the hoop term).
+      dealii::Tensor<2, 3> deformation_gradient(const dealii::FEValues<dim> &v,
+                                                unsigned int                 q,
+                                                const std::vector<double>   &values,
+                                                double                       radius) const;
+      /// det of the active block of F.
+      double active_det(const dealii::Tensor<2, 3> &F) const
+      {
+        return plane_strain ? F[0][0] * F[1][1] - F[0][1] * F[1][0] : determinant(F);
+      }
+      /// β F on the active block (F-bar); in plane strain F₃₃ stays 1.
+      dealii::Tensor<2, 3> bar(const dealii::Tensor<2, 3> &F, const double beta) const
+      {
+        dealii::Tensor<2, 3> Fb = beta * F;
+        if (plane_strain)
+          Fb[2][2] = 1;
+        return Fb;
+      }
+      /// Radius of point @p q for the hoop term (1 when not axisymmetric).
+      double radius(const dealii::FEValues<dim> &v, const unsigned int q) const
+      {
+        return axisymmetric ? v.quadrature_point(q)[0] : 1.;
+      }
+      /// Integration weight of point @p q: per full ring 2πR in the axisymmetric case.
+      double weight(const dealii::FEValues<dim> &v, const unsigned int q, const double R) const
+      {
+        return v.JxW(q) * (axisymmetric ? 2 * dealii::numbers::PI * R : 1.);
+      }
+      /// G_a = ∂F/∂u_a of shape function @p a at point @p q (hoop entry N_a/R included).
+      void shape_gradient(const dealii::FEValues<dim> &v,
+                          unsigned int                 a,
+                          unsigned int                 q,
+                          double                       R,
+                          ShapeGradient               &g) const;
+    };
+  } // namespace MechanicsAssembly
+} // namespace anvil

@@ -1,0 +1,88 @@
+// The element formulation shared by the mechanical kernels: plane strain,
+// axisymmetric (the hoop term) or 3D, standard or F-bar.
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <anvil/core/instantiate.h>
+#include <anvil/mechanics/element_formulation.h>
+
+namespace anvil
+{
+  namespace MechanicsAssembly
+  {
+    using namespace dealii;
+
+    template <int dim>
+    Formulation<dim>::Formulation(const FiniteElement<dim> &fe, const bool axisymmetric,
+                                  const bool f_bar)
+      : axisymmetric(axisymmetric)
+      , f_bar(f_bar)
+      , plane_strain(dim == 2 && !axisymmetric)
+      , alpha((dim == 2 && !axisymmetric) ? 0.5 : 1. / 3.)
+      // The directions of δF this formulation needs and where each lives.
+      , directions(dim == 3 ? TangentDirections::in_plane(3, false) :
+                              TangentDirections::in_plane(2, axisymmetric))
+      , n_dofs(fe.n_dofs_per_cell())
+      , component(fe.n_dofs_per_cell())
+    {
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        component[i] = fe.system_to_component_index(i).first;
+      for (auto &row : where)
+        for (int &x : row)
+          x = -1;
+      for (unsigned int k = 0; k < directions.n; ++k)
+        where[directions.kl[k].first][directions.kl[k].second] = k;
+    }
+
+    template <int dim>
+    Tensor<2, 3> Formulation<dim>::deformation_gradient(const Tensor<2, dim> &grad_u,
+                                                        const double          radial_displacement,
+                                                        const double          radius) const
+    {
+      // Plane strain: F₃₃ = 1. Axisymmetric: the hoop stretch F₃₃ = 1 + u_r/R.
+      const double hoop = axisymmetric ? 1 + radial_displacement / radius : 1.;
+      return embed<dim>(unit_symmetric_tensor<dim>() + grad_u, hoop);
+    }
+
+    template <int dim>
+    Tensor<2, 3> Formulation<dim>::deformation_gradient(const FEValues<dim>       &v,
+                                                        const unsigned int         q,
+                                                        const std::vector<double> &values,
+                                                        const double               R) const
+    {
+      Tensor<2, dim> grad;
+      double         u_r = 0;
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        {
+          const Tensor<1, dim> g = v.shape_grad_component(i, q, component[i]);
+          for (unsigned int d = 0; d < dim; ++d)
+            grad[component[i]][d] += values[i] * g[d];
+          if (axisymmetric && component[i] == 0)
+            u_r += values[i] * v.shape_value_component(i, q, 0);
+        }
+      return deformation_gradient(grad, u_r, R);
+    }
+
+    template <int dim>
+    void Formulation<dim>::shape_gradient(const FEValues<dim> &v, const unsigned int a,
+                                          const unsigned int q, const double R,
+                                          ShapeGradient &g) const
+    {
+      const unsigned int   ca = component[a];
+      const Tensor<1, dim> gr = v.shape_grad_component(a, q, ca);
+      g.n                     = 0;
+      for (unsigned int J_ = 0; J_ < dim; ++J_)
+        {
+          g.c[g.n]   = where[ca][J_];
+          g.v[g.n++] = gr[J_];
+        }
+      // The hoop term: δF₃₃ = δu_r/R.
+      if (axisymmetric && ca == 0)
+        {
+          g.c[g.n]   = where[2][2];
+          g.v[g.n++] = v.shape_value_component(a, q, 0) / R;
+        }
+    }
+
+    ANVIL_INSTANTIATE_CLASS(Formulation)
+  } // namespace MechanicsAssembly
+} // namespace anvil

@@ -1,0 +1,346 @@
+// The Newton–Raphson solve of one step of MechanicalProblem: predictor,
+// linear solves, convergence tests, line search; the finite-difference check
+// of the tangent.
+#include <deal.II/base/utilities.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+
+#include <anvil/contact/contact_problem.h>
+#include <anvil/core/instantiate.h>
+#include <anvil/mechanics/mechanical_problem.h>
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  template <int dim>
+  std::string MechanicalProblem<dim>::material_failure_message() const
+  {
+    // The first rank that failed tells (all ranks return the same text).
+    const unsigned int rank  = Utilities::MPI::this_mpi_process(mpi_communicator);
+    const unsigned int first = Utilities::MPI::min(material_failure.empty() ?
+                                                     Utilities::MPI::n_mpi_processes(mpi_communicator) :
+                                                     rank,
+                                                   mpi_communicator);
+    if (first == Utilities::MPI::n_mpi_processes(mpi_communicator))
+      return "an element inverted (J <= 0)";
+    std::vector<char> text(material_failure.begin(), material_failure.end());
+    text = Utilities::MPI::broadcast(mpi_communicator, text, first);
+    return std::string(text.begin(), text.end());
+  }
+
+  template <int dim>
+  double MechanicalProblem<dim>::residual_norm() const
+  {
+    return system_rhs.l2_norm();
+  }
+
+  template <int dim>
+  unsigned int MechanicalProblem<dim>::solve_linear_system(TrilinosWrappers::MPI::Vector &du)
+  {
+    TimerOutput::Scope t(timer, "Mechanics: linear solve");
+    const bool direct = parameters.linear_solver == "direct" ||
+                        (parameters.linear_solver == "automatic" &&
+                         dof_handler.n_dofs() <= parameters.direct_solver_limit);
+    if (direct)
+      {
+        SolverControl                  control(1, 0);
+        TrilinosWrappers::SolverDirect solver(control,
+                                              TrilinosWrappers::SolverDirect::AdditionalData(
+                                                false, "Amesos_Klu"));
+        solver.solve(system_matrix, du, system_rhs);
+        return 1;
+      }
+    TrilinosWrappers::PreconditionAMG                 amg;
+    TrilinosWrappers::PreconditionAMG::AdditionalData data;
+    std::vector<std::vector<bool>>                    constant_modes;
+    DoFTools::extract_constant_modes(dof_handler, ComponentMask(dim, true), constant_modes);
+    data.constant_modes        = constant_modes;
+    data.elliptic              = true;
+    data.higher_order_elements = parameters.polynomial_degree > 1;
+    data.smoother_sweeps       = 2;
+    data.aggregation_threshold = 0.02;
+    amg.initialize(system_matrix, data);
+    SolverControl control(parameters.linear_max_iterations,
+                          parameters.linear_tolerance * system_rhs.l2_norm());
+    // Restart 30: AMG converges in 10–40 iterations here, and each Krylov
+    // vector costs 8 bytes per DoF (100 would be 800 B/DoF).
+    SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+      control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(30));
+    gmres.solve(system_matrix, du, system_rhs, amg);
+    return control.last_step();
+  }
+
+  template <int dim>
+  double MechanicalProblem<dim>::tangent_error()
+  {
+    // Random direction on the free dofs; K is assembled at the current u.
+    TrilinosWrappers::MPI::Vector du(locally_owned_dofs, mpi_communicator), Kdu(du), r_plus(du);
+    for (const auto i : locally_owned_dofs)
+      du(i) = std::sin(1.0 + 7.3 * i);
+    du.compress(VectorOperation::insert);
+    constraints.set_zero(du);
+    assemble(true, current_time);
+    system_matrix.vmult(Kdu, du);
+    constraints.set_zero(Kdu);
+    const TrilinosWrappers::MPI::Vector u0 = owned_solution;
+    const double h = 1e-7 * std::max(1.0, u0.l2_norm()) / std::max(du.l2_norm(), 1e-300);
+    owned_solution.add(h, du);
+    solution = owned_solution;
+    assemble(false, current_time);
+    r_plus = system_rhs; // −R(u + h du)
+    owned_solution = u0;
+    owned_solution.add(-h, du);
+    solution = owned_solution;
+    assemble(false, current_time);
+    r_plus -= system_rhs; // −R(u+) + R(u−)
+    r_plus /= -2 * h;     // (R(u+) − R(u−)) / 2h ≈ K du
+    owned_solution = u0;
+    solution       = owned_solution;
+    r_plus -= Kdu;
+    return r_plus.l2_norm() / std::max(Kdu.l2_norm(), 1e-300);
+  }
+
+  template <int dim>
+  typename MechanicalProblem<dim>::StepResult
+  MechanicalProblem<dim>::solve_step(const double time_old, const double time_new,
+                                     const bool from_last_solution)
+  {
+    StepResult result;
+    current_time_step = time_new - time_old;
+    current_time      = time_new;
+    if (contact)
+      {
+        contact->begin_step(time_old, time_new, old_solution);
+        if (contact->couplings_changed())
+          setup_matrix();
+      }
+
+    const bool has_jump = predict(time_old, time_new, from_last_solution);
+
+    TrilinosWrappers::MPI::Vector du(locally_owned_dofs, mpi_communicator);
+    double last_increment = -1;
+    for (unsigned int it = 0;; ++it)
+      {
+        if (!assemble(true, time_new))
+          {
+            result.failure = material_failure_message();
+            return result;
+          }
+        const double r = residual_norm();
+        if (!std::isfinite(r))
+          {
+            result.failure = "the residual is not a number";
+            return result;
+          }
+        result.residuals.push_back(r);
+        if (parameters.check_tangent)
+          {
+            const double e = tangent_error();
+            if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+              std::cout << "    tangent check: |K du - FD| / |K du| = " << e << std::endl;
+            assemble(true, time_new); // restore K and R at u
+          }
+        // Force scale: the forces of the step, and the first residual of the
+        // step (in dynamics the inertia of the predictor dominates it, and
+        // round-off of M ã is relative to it).
+        const double scale = std::max({internal_force.l2_norm(), external_force.l2_norm(),
+                                       inertia_force.l2_norm(), result.residuals.front()});
+        TrilinosWrappers::MPI::Vector step_u(owned_solution);
+        step_u -= owned_old_solution;
+        const double du_scale = step_u.l2_norm();
+        const bool residual_ok =
+          r <= parameters.absolute_residual_tolerance || r <= parameters.residual_tolerance * scale;
+        // The correction that would come next is about the last one times the
+        // residual's contraction (quadratic convergence makes this sharp):
+        // test that instead of paying one more solve to see it.
+        const double r_previous = result.residuals.size() > 1 ?
+                                    result.residuals[result.residuals.size() - 2] : r;
+        const double predicted_increment =
+          last_increment * std::min(1.0, r / std::max(r_previous, 1e-300));
+        // Corrections cannot fall below round-off of the displacement itself.
+        // (positions x = X + u carry the digits, so the scale is the mesh size).
+        const double increment_floor =
+          100 * std::numeric_limits<double>::epsilon() *
+          (owned_solution.l2_norm() + std::sqrt(double(dof_handler.n_dofs())) * mesh_diameter);
+        const bool   increment_ok =
+          (last_increment >= 0 &&
+           predicted_increment <= std::max({parameters.displacement_tolerance * du_scale,
+                                            parameters.absolute_displacement_tolerance,
+                                            increment_floor})) ||
+          r <= parameters.absolute_residual_tolerance;
+        // Corrections a thousand times below the increment tolerance mean the
+        // residual sits on its round-off floor: accept.
+        const bool stagnated =
+          last_increment >= 0 &&
+          last_increment <= std::max(1e-3 * parameters.displacement_tolerance * du_scale,
+                                     increment_floor) &&
+          r <= 1e3 * parameters.residual_tolerance * scale;
+        if ((residual_ok && (increment_ok || it == 0) && !(it == 0 && has_jump)) || stagnated)
+          {
+            result.converged  = true;
+            result.iterations = it;
+            return result;
+          }
+        if (it >= parameters.max_iterations)
+          {
+            result.iterations = it;
+            result.failure    = "Newton did not converge in " + std::to_string(it) +
+                             " iterations (|R| = " + Utilities::to_string(r, 3) + " N)";
+            return result;
+          }
+
+        du = 0;
+        try
+          {
+            result.linear_iterations += solve_linear_system(du);
+          }
+        catch (const std::exception &e)
+          {
+            result.failure = "the linear solver failed";
+            return result;
+          }
+        active_constraints->distribute(du);
+        active_constraints = &constraints;
+        last_increment     = du.l2_norm();
+        result.increments.push_back(last_increment);
+
+        // The first update carries the boundary jump: take it whole.
+        // Near convergence (and on the round-off floor) s(α) is noise.
+        result.line_search_steps.push_back(
+          line_search(du, (it == 0 && has_jump) || residual_ok, time_new));
+      }
+  }
+
+  template <int dim>
+  bool MechanicalProblem<dim>::predict(const double time_old, const double time_new,
+                                       const bool from_last_solution)
+  {
+    // Predictor: the first Newton iteration starts from the committed
+    // configuration and imposes the jump of the prescribed displacements as
+    // inhomogeneous constraints, so the whole body follows the boundary
+    // (moving only the boundary nodes would invert the cells next to it when
+    // the jump exceeds their size).
+    //
+    // The free dofs start from the last step's increment scaled to this step
+    // (linear extrapolation in time), which puts yielding points on their
+    // plastic branch from the first iteration; if that inverts an element,
+    // from the committed configuration.
+    // Again on the same step (iterated staggered): from the last solution,
+    // which already satisfies the step's boundary values.
+    if (!from_last_solution)
+      owned_solution = owned_old_solution;
+    if (!from_last_solution && parameters.extrapolate && previous_time_step > 0)
+      {
+        owned_solution.add(current_time_step / previous_time_step, previous_increment);
+        solution = owned_solution;
+        if (!assemble(false, time_new))
+          owned_solution = owned_old_solution;
+      }
+    solution = owned_solution;
+    predictor_constraints.clear();
+    predictor_constraints.reinit(constraint_lines);
+    DoFTools::make_hanging_node_constraints(dof_handler, predictor_constraints);
+    make_axis_constraints(predictor_constraints);
+    {
+      std::map<types::global_dof_index, double> values;
+      boundary_conditions.interpolate(dof_handler, time_new, values);
+      for (const auto &[dof, value] : values)
+        if (locally_relevant_dofs.is_element(dof) && !predictor_constraints.is_constrained(dof))
+          {
+            predictor_constraints.add_line(dof);
+            predictor_constraints.set_inhomogeneity(dof, value - solution(dof));
+          }
+      std::map<types::global_dof_index, double> increments;
+      boundary_conditions.interpolate_velocity_increment(dof_handler, time_old, time_new, increments);
+      for (const auto &[dof, increment] : increments)
+        if (locally_relevant_dofs.is_element(dof) && !predictor_constraints.is_constrained(dof))
+          {
+            predictor_constraints.add_line(dof);
+            predictor_constraints.set_inhomogeneity(dof, increment + old_solution(dof) - solution(dof));
+          }
+    }
+    add_remote_constraints(predictor_constraints);
+    predictor_constraints.close();
+    active_constraints = &predictor_constraints;
+    double largest_jump = 0;
+    for (const auto &line : predictor_constraints.get_lines())
+      largest_jump = std::max(largest_jump, std::abs(line.inhomogeneity));
+    return Utilities::MPI::max(largest_jump, mpi_communicator) > 0;
+  }
+
+  template <int dim>
+  double MechanicalProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &du,
+                                            const bool full_step, const double time_new)
+  {
+    // Line search on the energy norm s(α) = δu · R(u + α δu) (Crisfield):
+    // the residual norm itself grows in the first iterations of large
+    // rotations although the step is good, so it is a poor merit function.
+    // A full step is kept unless |s(1)| > 0.8 |s(0)| or an element inverts;
+    // then α follows the secant root of s, within [0.1, 1].
+    const TrilinosWrappers::MPI::Vector u_start = owned_solution;
+    double       alpha = 1;
+    const double s0    = -(du * system_rhs);
+    for (unsigned int ls = 0;; ++ls)
+      {
+        owned_solution = u_start;
+        owned_solution.add(alpha, du);
+        solution = owned_solution;
+        if (!parameters.line_search || ls == 5 || full_step)
+          break;
+        const bool ok = assemble(false, time_new);
+        if (!ok)
+          {
+            alpha *= 0.5;
+            continue;
+          }
+        const double s1 = -(du * system_rhs);
+        if (!std::isfinite(s1))
+          {
+            alpha *= 0.5;
+            continue;
+          }
+        if (std::abs(s1) <= 0.8 * std::abs(s0))
+          break;
+        // Secant root of s between (0, s0) and (α, s1). If s has not changed
+        // sign and grows in magnitude the root lies beyond α: keep α.
+        const double next = alpha * s0 / (s0 - s1);
+        if (!(next > 0) || next >= alpha)
+          break;
+        alpha = std::max(0.1 * alpha, next);
+      }
+    return alpha;
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::revert_step()
+  {
+    for (auto &p : points.raw())
+      if (p)
+        p->revert();
+    owned_solution = owned_old_solution;
+    solution       = owned_solution;
+  }
+
+#define INSTANTIATE(dim)                                                                         \
+  template std::string  MechanicalProblem<dim>::material_failure_message() const;                \
+  template double       MechanicalProblem<dim>::residual_norm() const;                           \
+  template unsigned int MechanicalProblem<dim>::solve_linear_system(                             \
+    TrilinosWrappers::MPI::Vector &);                                                            \
+  template double MechanicalProblem<dim>::tangent_error();                                       \
+  template typename MechanicalProblem<dim>::StepResult MechanicalProblem<dim>::solve_step(       \
+    double, double, bool);                                                                       \
+  template bool   MechanicalProblem<dim>::predict(double, double, bool);                         \
+  template double MechanicalProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &,     \
+                                                      bool, double);                             \
+  template void   MechanicalProblem<dim>::revert_step();
+  ANVIL_INSTANTIATE(INSTANTIATE)
+#undef INSTANTIATE
+} // namespace anvil

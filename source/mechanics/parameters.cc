@@ -1,0 +1,167 @@
+// The parameters of MechanicalProblem: declared and parsed from the Mechanics subsection.
+#include <deal.II/base/parameter_handler.h>
+
+#include <anvil/core/input_error.h>
+#include <anvil/core/expression.h>
+#include <anvil/core/instantiate.h>
+#include <anvil/core/scene.h>
+#include <anvil/mechanics/mechanical_problem.h>
+
+#include <string>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  template <int dim>
+  void MechanicalProblem<dim>::Parameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Mechanics");
+    prm.declare_entry("Polynomial degree", "1", Patterns::Integer(1, 2),
+                      "Degree of the displacement elements: 1 (Q1) or 2 (Q2).");
+    prm.declare_entry("Element", "F-bar", Patterns::Selection("F-bar|standard"),
+                      "F-bar: the dilatation of each Q1 cell is its centre's (de Souza Neto et al. "
+                      "1996), so isochoric plastic flow does not lock (seed sec. 3.1: constant "
+                      "pressure elements); standard: plain displacement elements (Q1 locks in "
+                      "plastic flow; Q2 with Polynomial degree = 2).");
+    prm.declare_entry("Two-dimensional model", "plane strain",
+                      Patterns::Selection("plane strain|axisymmetric"),
+                      "For Dimension = 2: plane strain, or axisymmetric about the y axis with x the "
+                      "radius (x >= 0; hoop strain u_r/r; forces are per full ring, 2 pi r).");
+    prm.declare_entry("Temperature", "293", Patterns::Double(0),
+                      "Uniform temperature in K of a scene without a temperature field: the "
+                      "material laws are evaluated at it.");
+    prm.declare_entry("Gravity", "", Patterns::Anything(),
+                      "Body force per unit mass as a vector 'gx, gy[, gz]' in mm/s^2 (e.g. 0, -9810); "
+                      "empty: none.");
+    prm.declare_entry("Maximum plastic strain increment", "0", Patterns::Double(0),
+                      "Cut the step back if any point's equivalent plastic strain grows by more than "
+                      "this in one step (dimensionless; 0: no limit).");
+    prm.enter_subsection("Dynamics");
+    prm.declare_entry("Type", "quasi-static", Patterns::Selection("quasi-static|implicit"),
+                      "quasi-static: no inertia; implicit: generalized-alpha time integration of "
+                      "M a + f_int = f_ext (Chung & Hulbert 1993) with force averaging.");
+    prm.declare_entry("Spectral radius", "1", Patterns::Double(0, 1),
+                      "rho_inf in [0, 1]: 1 conserves energy (trapezoidal rule, the seed's mid-point "
+                      "member); smaller values damp the highest frequencies (0.8 is common).");
+    prm.declare_entry("Mass", "consistent", Patterns::Selection("consistent|lumped"),
+                      "Consistent or row-sum lumped mass matrix.");
+    prm.declare_entry("Initial velocity", "", Patterns::Anything(),
+                      "'ux = expr, uy = expr[, uz = expr]' in mm/s, expressions in x, y, z (mm); "
+                      "empty: at rest. An impact is an initial velocity.");
+    prm.leave_subsection();
+    prm.enter_subsection("Newton");
+    prm.declare_entry("Maximum iterations", "15", Patterns::Integer(1),
+                      "Newton iterations per time step before the step is cut back.");
+    prm.declare_entry("Residual tolerance", "1e-8", Patterns::Double(0),
+                      "Relative residual tolerance: |R| <= tol * max(|f_int|, |f_ext|, |M a|, |R_0|), R_0 the first residual of the step (dimensionless).");
+    prm.declare_entry("Absolute residual tolerance", "1e-12", Patterns::Double(0),
+                      "Residual norm in N below which a step is converged whatever the scale.");
+    prm.declare_entry("Displacement tolerance", "1e-8", Patterns::Double(0),
+                      "Relative increment tolerance: the next correction, estimated as the last one "
+                      "times the residual's contraction, <= tol * |Δu of the step| (dimensionless).");
+    prm.declare_entry("Extrapolate", "true", Patterns::Bool(),
+                      "Start each step from the last step's increment scaled to the new step "
+                      "(linear extrapolation in time) instead of the committed configuration.");
+    prm.declare_entry("Check tangent", "false", Patterns::Bool(),
+                      "Compare the assembled tangent with central finite differences of the "
+                      "residual at every Newton iteration and print the relative error (slow; "
+                      "for debugging new material laws).");
+    prm.declare_entry("Absolute displacement tolerance", "0", Patterns::Double(0),
+                      "Correction norm in mm below which the increment test passes whatever the "
+                      "step (0: only the relative test and the round-off floor).");
+    prm.declare_entry("Line search", "true", Patterns::Bool(),
+                      "Backtrack (halve the Newton update, up to 5 times) while the residual grows.");
+    prm.leave_subsection();
+    prm.enter_subsection("Linear solver");
+    prm.declare_entry("Type", "automatic", Patterns::Selection("automatic|direct|iterative"),
+                      "direct: sparse LU (Amesos KLU); iterative: GMRES with algebraic multigrid "
+                      "(Trilinos ML); automatic: direct below 'Direct solver limit' DoFs.");
+    prm.declare_entry("Tolerance", "1e-10", Patterns::Double(0),
+                      "Relative tolerance of the iterative solver (dimensionless).");
+    prm.declare_entry("Maximum iterations", "1000", Patterns::Integer(1),
+                      "Iterations of the iterative solver before the step is cut back.");
+    prm.declare_entry("Direct solver limit", "200000", Patterns::Integer(0),
+                      "Number of DoFs up to which 'automatic' chooses the direct solver.");
+    prm.leave_subsection();
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::Parameters::parse_parameters(ParameterHandler &prm, const Scene &scene)
+  {
+    prm.enter_subsection("Mechanics");
+    polynomial_degree = prm.get_integer("Polynomial degree");
+    f_bar             = prm.get("Element") == "F-bar";
+    axisymmetric      = dim == 2 && prm.get("Two-dimensional model") == "axisymmetric";
+    temperature       = prm.get_double("Temperature");
+    gravity           = prm.get("Gravity");
+    maximum_plastic_increment = prm.get_double("Maximum plastic strain increment");
+    prm.enter_subsection("Dynamics");
+    dynamic          = prm.get("Type") == "implicit";
+    spectral_radius  = prm.get_double("Spectral radius");
+    lumped_mass      = prm.get("Mass") == "lumped";
+    initial_velocity = prm.get("Initial velocity");
+    prm.leave_subsection();
+    for (const auto &assignment : split_outside_parentheses(initial_velocity, ','))
+      {
+        if (assignment.empty())
+          continue;
+        const std::string path = "Mechanics/Dynamics/Initial velocity";
+        const auto        eq   = assignment.find('=');
+        const std::string c    = eq == std::string::npos ? "" : trim(assignment.substr(0, eq));
+        bool              ok   = false;
+        for (unsigned int d = 0; d < dim; ++d)
+          ok = ok || c == std::string("u") + "xyz"[d];
+        if (!ok)
+          scene.fail(path, "'" + assignment + "' should be " +
+                             (dim == 2 ? "ux = expr or uy = expr" : "ux, uy or uz = expr") + " (mm/s)");
+        parse_expression<dim>(trim(assignment.substr(eq + 1)), scene, path);
+      }
+    // Check the vectors now (one-line errors before any work).
+    if (!gravity.empty())
+      {
+        const auto parts = split_outside_parentheses(gravity, ',');
+        bool       ok    = parts.size() == dim;
+        for (const auto &x : parts)
+          try
+            {
+              std::size_t used = 0;
+              std::stod(x, &used);
+              ok = ok && used == x.size();
+            }
+          catch (...)
+            {
+              ok = false;
+            }
+        if (!ok)
+          scene.fail("Mechanics/Gravity", "= '" + gravity + "': expected " + std::to_string(dim) +
+                                            " numbers 'gx, gy" + (dim == 3 ? ", gz'" : "'") + " in mm/s^2");
+      }
+    prm.enter_subsection("Newton");
+    max_iterations              = prm.get_integer("Maximum iterations");
+    residual_tolerance          = prm.get_double("Residual tolerance");
+    absolute_residual_tolerance = prm.get_double("Absolute residual tolerance");
+    displacement_tolerance      = prm.get_double("Displacement tolerance");
+    absolute_displacement_tolerance = prm.get_double("Absolute displacement tolerance");
+    line_search                 = prm.get_bool("Line search");
+    check_tangent               = prm.get_bool("Check tangent");
+    extrapolate                 = prm.get_bool("Extrapolate");
+    prm.leave_subsection();
+    prm.enter_subsection("Linear solver");
+    linear_solver         = prm.get("Type");
+    linear_tolerance      = prm.get_double("Tolerance");
+    linear_max_iterations = prm.get_integer("Maximum iterations");
+    direct_solver_limit   = prm.get_integer("Direct solver limit");
+    prm.leave_subsection();
+    prm.leave_subsection();
+    if (f_bar && polynomial_degree != 1)
+      scene.fail("Mechanics/Element", "is F-bar, which is a Q1 element: use Element = standard "
+                                      "with Polynomial degree = 2");
+    if (dim == 3 && prm.get("Dimension") == "3")
+      axisymmetric = false;
+  }
+
+  template struct MechanicalProblem<2>::Parameters;
+  template struct MechanicalProblem<3>::Parameters;
+} // namespace anvil
