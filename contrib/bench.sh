@@ -54,6 +54,11 @@ print("targets: elastic assembly >= 300000 cells/s (2D), >= 40000 (3D); plastic 
 print("         3D 1M DoFs within 4096 B/DoF; <= 6 Newton iterations per step on the necking bar")
 PY
 "$ANVIL_BUILD/tests/bench_material_points" $([ "${1:-}" = "--small" ] && echo --quick)
+# Heat assembly (mass, tangent, residual) with 1 and 2 threads, WorkStream
+# (contrib/bench/thermal_assembly.cc): a ~20k-DoF 2D and a ~30k-DoF 3D problem,
+# best of 5 (--small: 2.5k and 2.2k DoFs, best of 2) and the speed-up. Threads
+# allowed here, unlike the one-core figures above.
+env -u DEAL_II_NUM_THREADS "$ANVIL_BUILD/tests/bench_thermal_assembly" $([ "${1:-}" = "--small" ] && echo --quick)
 # Thermo-mechanical necking bar (prm/necking_bar_thermal.prm, Simo & Miehe 1992)
 # per coupling scheme: wall time, cost of the heat half against the mechanics
 # (target <= 25 %), ARKode steps, Newton and staggered iterations, temperatures.

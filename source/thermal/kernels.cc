@@ -19,7 +19,8 @@ namespace anvil
                                   const Quadrature<dim - 1> &face_quadrature,
                                   const UpdateFlags cell_flags, const UpdateFlags reference_flags,
                                   const UpdateFlags face_flags)
-      : fe_values(mapping, fe, quadrature, cell_flags)
+      : own_mapping()
+      , fe_values(mapping, fe, quadrature, cell_flags)
       , fe_reference(reference_mapping, fe, quadrature, reference_flags)
       , fe_face(mapping, fe, face_quadrature, face_flags)
       , weight(quadrature.size())
@@ -34,11 +35,18 @@ namespace anvil
 
     template <int dim>
     ScratchData<dim>::ScratchData(const ScratchData &other)
-      : ScratchData(other.fe_values.get_mapping(), other.fe_reference.get_mapping(),
-                    other.fe_values.get_fe(), other.fe_values.get_quadrature(),
-                    other.fe_face.get_quadrature(), other.fe_values.get_update_flags(),
-                    other.fe_reference.get_update_flags(), other.fe_face.get_update_flags())
+      : ScratchData(other.fe_values.get_mapping().clone(), other)
     {}
+
+    template <int dim>
+    ScratchData<dim>::ScratchData(std::unique_ptr<const Mapping<dim>> mapping, const ScratchData &other)
+      : ScratchData(*mapping, other.fe_reference.get_mapping(), other.fe_values.get_fe(),
+                    other.fe_values.get_quadrature(), other.fe_face.get_quadrature(),
+                    other.fe_values.get_update_flags(), other.fe_reference.get_update_flags(),
+                    other.fe_face.get_update_flags())
+    {
+      own_mapping = std::move(mapping); // the FEValues above point to it
+    }
 
     CopyData::CopyData(const unsigned int dofs_per_cell)
       : matrix(dofs_per_cell, dofs_per_cell)

@@ -13,6 +13,7 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <memory>
 #include <vector>
 
 namespace anvil
@@ -42,9 +43,16 @@ namespace anvil
                   dealii::UpdateFlags                cell_flags,
                   dealii::UpdateFlags                reference_flags,
                   dealii::UpdateFlags                face_flags);
-      /// WorkStream copies the sample for every thread; FEValues are rebuilt.
+      /// WorkStream copies the sample for every thread; FEValues are rebuilt
+      /// on a copy of the current mapping: MappingQEulerian computes its
+      /// support points under a lock, which one copy per thread avoids.
       ScratchData(const ScratchData &other);
 
+    private:
+      std::unique_ptr<const dealii::Mapping<dim>> own_mapping; // null in the sample
+      ScratchData(std::unique_ptr<const dealii::Mapping<dim>> mapping, const ScratchData &other);
+
+    public:
       dealii::FEValues<dim>     fe_values;    // current configuration
       dealii::FEValues<dim>     fe_reference; // reference configuration
       dealii::FEFaceValues<dim> fe_face;      // current configuration

@@ -194,7 +194,9 @@ namespace anvil
     /**
      * Heat exchanged at nodes outside the cells' coupling (contact, eq. 30–33),
      * linear in T over a step: f += q(T), ∂q/∂T applied matrix-free. Each
-     * function writes only locally owned entries of its output.
+     * function writes only locally owned entries of its output. Called on
+     * the main thread of every process after the threaded cell loops (the
+     * contact's functions communicate).
      */
     struct Exchange
     {
@@ -277,7 +279,9 @@ namespace anvil
     double source_heat() const { return total_source; }
 
     /// T at the points of @p quadrature in @p cell (a cell of the shared
-    /// triangulation): the current and the committed values.
+    /// triangulation): the current and the committed values. Not reentrant
+    /// (it caches an FEValues): call it from one thread, as the coupling does
+    /// when it fills the per-point temperatures the mechanics reads.
     void temperature_at_quadrature_points(
       const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
       const dealii::Quadrature<dim>                                   &quadrature,
