@@ -60,6 +60,11 @@ PY
 # in plastic flow, best of 5, and the speed-up (the rest of this script runs
 # on one thread: DEAL_II_NUM_THREADS=1 above).
 env -u DEAL_II_NUM_THREADS "$ANVIL_BUILD/tests/bench_assembly_threads" $([ "${1:-}" = "--small" ] && echo --quick)
+# Heat assembly (mass, tangent, residual) with 1 and 2 threads, WorkStream
+# (contrib/bench/thermal_assembly.cc): a ~20k-DoF 2D and a ~30k-DoF 3D problem,
+# best of 5 (--small: 2.5k and 2.2k DoFs, best of 2) and the speed-up. Threads
+# allowed here, unlike the one-core figures above.
+env -u DEAL_II_NUM_THREADS "$ANVIL_BUILD/tests/bench_thermal_assembly" $([ "${1:-}" = "--small" ] && echo --quick)
 # Thermo-mechanical necking bar (prm/necking_bar_thermal.prm, Simo & Miehe 1992)
 # per coupling scheme: wall time, cost of the heat half against the mechanics
 # (target <= 25 %), ARKode steps, Newton and staggered iterations, temperatures.

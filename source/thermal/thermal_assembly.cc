@@ -1,16 +1,26 @@
-// ThermalProblem: assembly of M, f(T, t) = −K(T) T + F(T, t) and its tangent,
-// the heat balance integrals and the linear solvers behind ARKode.
+// ThermalProblem: assembly of M, f(T, t) = −K(T) T + F(T, t) and its
+// tangent on all threads of the process (WorkStream), Dirichlet handling.
+// The terms themselves are in kernels.cc; here the cell loops compose them.
+//
+// WorkStream runs the workers (cell integrals, into CopyData) on the threads
+// and the copiers (AffineConstraints::distribute_local_to_global into the
+// Trilinos objects) one at a time in cell order: the global sums are those of
+// a serial loop, bit for bit, whatever the number of threads. Everything a
+// worker calls only reads: FEValues (per thread), the ghosted temperature,
+// the FunctionParsers (deal.II keeps one muparser per thread; their time is
+// set before the loop), the materials, the mechanics' heat sources.
 #include <deal.II/base/utilities.h>
+#include <deal.II/base/work_stream.h>
 #include <deal.II/fe/fe_values.h>
-#include <deal.II/grid/grid_tools.h>
-#include <deal.II/lac/solver_cg.h>
-#include <deal.II/lac/solver_control.h>
+#include <deal.II/grid/filtered_iterator.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <anvil/core/instantiate.h>
+#include <anvil/thermal/assembly_data.h>
+#include <anvil/thermal/kernels.h>
 #include <anvil/thermal/thermal_problem.h>
 
 #include <cmath>
-#include <limits>
 
 namespace anvil
 {
@@ -18,8 +28,22 @@ namespace anvil
 
   namespace
   {
-    constexpr double stefan_boltzmann = 5.670374e-11; // mW/(mm² K⁴)
-  }
+    /// WorkStream over the locally owned cells of @p dofs, in their order.
+    template <int dim, class Worker, class Copier>
+    void for_owned_cells(const DoFHandler<dim> &dofs, const Worker &worker, const Copier &copier,
+                         const thermal::ScratchData<dim> &scratch)
+    {
+      using Iterator = FilteredIterator<typename DoFHandler<dim>::active_cell_iterator>;
+      const std::function<void(const Iterator &, thermal::ScratchData<dim> &, thermal::CopyData &)> work =
+        [&worker](const Iterator &cell, thermal::ScratchData<dim> &s, thermal::CopyData &c) {
+          worker(static_cast<const typename DoFHandler<dim>::active_cell_iterator &>(cell), s, c);
+        };
+      const std::function<void(const thermal::CopyData &)> copy = copier;
+      WorkStream::run(Iterator(IteratorFilters::LocallyOwnedCell(), dofs.begin_active()),
+                      Iterator(IteratorFilters::LocallyOwnedCell(), dofs.end()), work, copy, scratch,
+                      thermal::CopyData(dofs.get_fe().n_dofs_per_cell()));
+    }
+  } // namespace
 
   template <int dim>
   void ThermalProblem<dim>::dirichlet_values(const double t,
@@ -53,37 +77,23 @@ namespace anvil
     lumped_mass    = 0;
     // Mass is conserved: ρ dv = ρ₀ dV, so the capacity is integrated on the
     // reference configuration whatever the current one.
-    FEValues<dim> fe_values(reference_mapping, fe, quadrature,
-                            update_values | update_JxW_values | update_quadrature_points);
-    const unsigned int n = fe.n_dofs_per_cell();
-    FullMatrix<double>                   local(n, n);
-    dealii::Vector<double>               row_sums(n);
-    std::vector<types::global_dof_index> dofs(n);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          local = 0;
-          const auto  &m  = materials.at(cell->material_id());
-          const double rc = m.density * m.heat_capacity;
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              const double w = fe_values.JxW(q) *
-                               (parameters.axisymmetric ? 2 * numbers::PI * fe_values.quadrature_point(q)[0] : 1.);
-              for (unsigned int i = 0; i < n; ++i)
-                for (unsigned int j = 0; j < n; ++j)
-                  local(i, j) += rc * fe_values.shape_value(i, q) * fe_values.shape_value(j, q) * w;
-            }
-          for (unsigned int i = 0; i < n; ++i)
-            {
-              row_sums(i) = 0;
-              for (unsigned int j = 0; j < n; ++j)
-                row_sums(i) += local(i, j);
-            }
-          cell->get_dof_indices(dofs);
-          constraints.distribute_local_to_global(local, dofs, mass_matrix);
-          constraints.distribute_local_to_global(row_sums, dofs, lumped_mass);
-        }
+    const thermal::ScratchData<dim> scratch(reference_mapping, reference_mapping, fe, quadrature,
+                                            face_quadrature,
+                                            update_values | update_JxW_values | update_quadrature_points,
+                                            update_default, update_default);
+    const bool axi = parameters.axisymmetric;
+    auto worker = [&](const CellIterator &cell, thermal::ScratchData<dim> &s, thermal::CopyData &c) {
+      s.fe_values.reinit(cell);
+      thermal::fill_weights<dim>(s.fe_values, axi, s.weight);
+      const auto &m = materials.at(cell->material_id());
+      thermal::HeatCapacity::cell_matrix(s, m.density * m.heat_capacity, c);
+      cell->get_dof_indices(c.dofs);
+    };
+    auto copier = [&](const thermal::CopyData &c) {
+      constraints.distribute_local_to_global(c.matrix, c.dofs, mass_matrix);
+      constraints.distribute_local_to_global(c.row_sums, c.dofs, lumped_mass);
+    };
+    for_owned_cells(dof_handler, worker, copier, scratch);
     mass_matrix.compress(VectorOperation::add);
     lumped_mass.compress(VectorOperation::add);
     // Constrained rows: the diagonal AffineConstraints left in M (Ṫ = ġ rows).
@@ -95,6 +105,75 @@ namespace anvil
     lumped_mass.compress(VectorOperation::insert);
     mass_jacobi.initialize(mass_matrix);
     current_gamma = -1;
+  }
+
+  template <int dim>
+  void ThermalProblem<dim>::assemble_step_sources()
+  {
+    // F = ∫ s φ dv on the current configuration, s from the mechanics.
+    step_sources.reinit(locally_owned_dofs, mpi_communicator);
+    if (!heat_source)
+      return;
+    const thermal::ScratchData<dim> scratch(get_mapping(), reference_mapping, fe, quadrature,
+                                            face_quadrature,
+                                            update_values | update_JxW_values | update_quadrature_points,
+                                            update_default, update_default);
+    const bool axi = parameters.axisymmetric;
+    auto worker = [&](const CellIterator &cell, thermal::ScratchData<dim> &s, thermal::CopyData &c) {
+      s.fe_values.reinit(cell);
+      cell->get_dof_indices(c.dofs);
+      thermal::fill_weights<dim>(s.fe_values, axi, s.weight);
+      c.vector = 0;
+      thermal::VolumeSource::cell_rates<dim>(s, cell, nullptr, &heat_source, 0., axi);
+      thermal::VolumeSource::cell_load(s, c);
+    };
+    auto copier = [&](const thermal::CopyData &c) {
+      constraints.distribute_local_to_global(c.vector, c.dofs, step_sources);
+    };
+    for_owned_cells(dof_handler, worker, copier, scratch);
+    step_sources.compress(VectorOperation::add);
+  }
+
+  template <int dim>
+  void ThermalProblem<dim>::add_prescribed_fluxes(const double t, Vector &rhs)
+  {
+    // Prescribed fluxes at t, on their faces only, each face added on its own.
+    bool any_flux = false;
+    for (const auto &[id, b] : boundary_conditions.boundaries)
+      if (b.flux)
+        {
+          any_flux = true;
+          b.flux->set_time(t);
+        }
+    if (!any_flux)
+      return;
+    const thermal::ScratchData<dim> scratch(get_mapping(), reference_mapping, fe, quadrature,
+                                            face_quadrature, update_default, update_default,
+                                            update_values | update_JxW_values | update_quadrature_points);
+    const bool axi = parameters.axisymmetric;
+    auto worker = [&](const CellIterator &cell, thermal::ScratchData<dim> &s, thermal::CopyData &c) {
+      c.n_faces = 0;
+      if (!cell->at_boundary())
+        return;
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary())
+          {
+            const auto bc = boundary_conditions.boundaries.find(cell->face(f)->boundary_id());
+            if (bc == boundary_conditions.boundaries.end() || !bc->second.flux)
+              continue;
+            c.vector = 0;
+            thermal::boundary_face<dim>(s, cell, f, bc->second, nullptr, axi, false, c);
+            c.face_vectors[c.n_faces++] = c.vector;
+          }
+      if (c.n_faces > 0)
+        cell->get_dof_indices(c.dofs);
+    };
+    auto copier = [&](const thermal::CopyData &c) {
+      for (unsigned int k = 0; k < c.n_faces; ++k)
+        constraints.distribute_local_to_global(c.face_vectors[k], c.dofs, rhs);
+    };
+    for_owned_cells(dof_handler, worker, copier, scratch);
+    rhs.compress(VectorOperation::add);
   }
 
   template <int dim>
@@ -115,34 +194,7 @@ namespace anvil
       }
     if (!sources_current)
       {
-        // F = ∫ s φ dv on the current configuration, s from the mechanics.
-        step_sources.reinit(locally_owned_dofs, mpi_communicator);
-        if (heat_source)
-          {
-            FEValues<dim> fe_values(get_mapping(), fe, quadrature,
-                                    update_values | update_JxW_values | update_quadrature_points);
-            const unsigned int n = fe.n_dofs_per_cell();
-            dealii::Vector<double>               local_f(n);
-            std::vector<types::global_dof_index> dofs(n);
-            for (const auto &cell : dof_handler.active_cell_iterators())
-              if (cell->is_locally_owned())
-                {
-                  fe_values.reinit(cell);
-                  cell->get_dof_indices(dofs);
-                  local_f = 0;
-                  for (unsigned int q = 0; q < quadrature.size(); ++q)
-                    {
-                      const double w = fe_values.JxW(q) * (parameters.axisymmetric ?
-                                                             2 * numbers::PI * fe_values.quadrature_point(q)[0] :
-                                                             1.);
-                      const double s = heat_source(cell, q);
-                      for (unsigned int i = 0; i < n; ++i)
-                        local_f(i) += fe_values.shape_value(i, q) * s * w;
-                    }
-                  constraints.distribute_local_to_global(local_f, dofs, step_sources);
-                }
-            step_sources.compress(VectorOperation::add);
-          }
+        assemble_step_sources();
         sources_current = true;
       }
     {
@@ -157,45 +209,29 @@ namespace anvil
         exchange.add_rhs(t, y, rhs);
         rhs.compress(VectorOperation::add);
       }
-    // Prescribed fluxes at t, on their faces only.
-    bool any_flux = false;
-    for (const auto &[id, b] : boundary_conditions.boundaries)
-      if (b.flux)
-        {
-          any_flux = true;
-          b.flux->set_time(t);
-        }
-    if (any_flux)
-      {
-        FEFaceValues<dim> fe_face(get_mapping(), fe, face_quadrature,
-                                  update_values | update_JxW_values | update_quadrature_points);
-        const unsigned int n = fe.n_dofs_per_cell();
-        dealii::Vector<double>               local_f(n);
-        std::vector<types::global_dof_index> dofs(n);
-        for (const auto &cell : dof_handler.active_cell_iterators())
-          if (cell->is_locally_owned() && cell->at_boundary())
-            for (const unsigned int f : cell->face_indices())
-              if (cell->face(f)->at_boundary())
-                {
-                  const auto bc = boundary_conditions.boundaries.find(cell->face(f)->boundary_id());
-                  if (bc == boundary_conditions.boundaries.end() || !bc->second.flux)
-                    continue;
-                  fe_face.reinit(cell, f);
-                  cell->get_dof_indices(dofs);
-                  local_f = 0;
-                  for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                    {
-                      const Point<dim> &x = fe_face.quadrature_point(q);
-                      const double w = fe_face.JxW(q) * (parameters.axisymmetric ? 2 * numbers::PI * x[0] : 1.);
-                      const double q_in = bc->second.flux->value(x);
-                      for (unsigned int i = 0; i < n; ++i)
-                        local_f(i) += fe_face.shape_value(i, q) * q_in * w;
-                    }
-                  constraints.distribute_local_to_global(local_f, dofs, rhs);
-                }
-        rhs.compress(VectorOperation::add);
-      }
+    add_prescribed_fluxes(t, rhs);
     return true;
+  }
+
+  template <int dim>
+  std::map<types::global_dof_index, double> ThermalProblem<dim>::dirichlet_rates(const double t) const
+  {
+    // ġ at the Dirichlet dofs (central difference in time), for the rows
+    // Ṫ_D = ġ_D and for moving M_fD ġ_D to the free rows.
+    std::map<types::global_dof_index, double> g_dot;
+    if (!has_dirichlet)
+      return g_dot;
+    const double eps = 1e-6 * std::max(step_length, 1e-300);
+    std::map<types::global_dof_index, double> plus, minus;
+    dirichlet_values(t + eps, plus);
+    dirichlet_values(t - eps, minus);
+    for (const auto &[i, v] : plus)
+      {
+        const double d = (v - minus.at(i)) / (2 * eps);
+        if (d != 0)
+          g_dot[i] = d;
+      }
+    return g_dot;
   }
 
   template <int dim>
@@ -212,22 +248,9 @@ namespace anvil
     }
     const Vector &T = scratch_ghosted;
 
-    // ġ at the Dirichlet dofs (central difference in time), for the rows
-    // Ṫ_D = ġ_D and for moving M_fD ġ_D to the free rows.
     std::map<types::global_dof_index, double> g_dot;
-    if (rhs && has_dirichlet)
-      {
-        const double eps = 1e-6 * std::max(step_length, 1e-300);
-        std::map<types::global_dof_index, double> plus, minus;
-        dirichlet_values(t + eps, plus);
-        dirichlet_values(t - eps, minus);
-        for (const auto &[i, v] : plus)
-          {
-            const double d = (v - minus.at(i)) / (2 * eps);
-            if (d != 0)
-              g_dot[i] = d;
-          }
-      }
+    if (rhs)
+      g_dot = dirichlet_rates(t);
     const bool coupling = !g_dot.empty() && !parameters.lumped_mass;
 
     if (rhs)
@@ -241,116 +264,58 @@ namespace anvil
         if (f)
           f->set_time(t);
 
-    const UpdateFlags flags = update_values | update_gradients | update_JxW_values | update_quadrature_points;
-    FEValues<dim>     fe_values(get_mapping(), fe, quadrature, flags);
-    FEValues<dim>     fe_reference(reference_mapping, fe, quadrature,
-                               update_JxW_values | update_quadrature_points);
-    FEFaceValues<dim> fe_face(get_mapping(), fe, face_quadrature,
-                              update_values | update_JxW_values | update_quadrature_points);
-    const unsigned int n = fe.n_dofs_per_cell(), nq = quadrature.size();
-    FullMatrix<double>                   local_A(n, n);
-    dealii::Vector<double>               local_f(n), local_g_dot(n);
-    std::vector<types::global_dof_index> dofs(n);
-    std::vector<double>                  T_q(nq), T_f(face_quadrature.size());
-    std::vector<Tensor<1, dim>>          grad_T(nq);
+    const thermal::ScratchData<dim> scratch(
+      get_mapping(), reference_mapping, fe, quadrature, face_quadrature,
+      update_values | update_gradients | update_JxW_values | update_quadrature_points,
+      coupling ? update_JxW_values | update_quadrature_points : update_default,
+      update_values | update_JxW_values | update_quadrature_points);
     const bool axi = parameters.axisymmetric;
+    const FunctionParser<dim> *expression = source_function.get();
 
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
+    auto worker = [&](const CellIterator &cell, thermal::ScratchData<dim> &s, thermal::CopyData &c) {
+      s.fe_values.reinit(cell);
+      if (coupling)
+        s.fe_reference.reinit(cell);
+      cell->get_dof_indices(c.dofs);
+      s.fe_values.get_function_values(T, s.T);
+      s.fe_values.get_function_gradients(T, s.grad_T);
+      thermal::fill_weights<dim>(s.fe_values, axi, s.weight);
+      c.matrix = 0;
+      c.vector = 0;
+      bool any_g_dot = false;
+      if (coupling)
+        for (unsigned int j = 0; j < c.dofs.size(); ++j)
+          {
+            const auto it = g_dot.find(c.dofs[j]);
+            s.g_dot(j)    = it == g_dot.end() ? 0. : it->second;
+            any_g_dot     = any_g_dot || s.g_dot(j) != 0;
+          }
+      const auto &m = materials.at(cell->material_id());
+      if (rhs)
         {
-          fe_values.reinit(cell);
-          if (coupling)
-            fe_reference.reinit(cell);
-          cell->get_dof_indices(dofs);
-          fe_values.get_function_values(T, T_q);
-          fe_values.get_function_gradients(T, grad_T);
-          local_A = 0;
-          local_f = 0;
-          bool any_g_dot = false;
-          if (coupling)
-            for (unsigned int j = 0; j < n; ++j)
-              {
-                const auto it  = g_dot.find(dofs[j]);
-                local_g_dot(j) = it == g_dot.end() ? 0. : it->second;
-                any_g_dot      = any_g_dot || local_g_dot(j) != 0;
-              }
-          const auto  &m  = materials.at(cell->material_id());
-          const double rc = m.density * m.heat_capacity;
-          // The capacity per current volume is ρ₀c dV/dv (mass conservation).
-          auto reference_weight = [&](const unsigned int q) {
-            return fe_reference.JxW(q) *
-                   (axi ? 2 * numbers::PI * fe_reference.quadrature_point(q)[0] : 1.);
-          };
-          for (unsigned int q = 0; q < nq; ++q)
-            {
-              const Point<dim> &x = fe_values.quadrature_point(q);
-              const double w  = fe_values.JxW(q) * (axi ? 2 * numbers::PI * x[0] : 1.);
-              const double k  = m.k(T_q[q]), dk = m.dk_dT();
-              if (rhs)
-                {
-                  double s = source_function ? source_function->value(x) : 0.;
-                  if (heat_source)
-                    s += heat_source(cell, q);
-                  double rc_g_dot = 0;
-                  if (any_g_dot)
-                    for (unsigned int j = 0; j < n; ++j)
-                      rc_g_dot += rc * reference_weight(q) / w * fe_values.shape_value(j, q) *
-                                  local_g_dot(j);
-                  for (unsigned int i = 0; i < n; ++i)
-                    local_f(i) += (-k * (fe_values.shape_grad(i, q) * grad_T[q]) +
-                                   fe_values.shape_value(i, q) * (s - rc_g_dot)) * w;
-                }
-              if (tangent)
-                for (unsigned int i = 0; i < n; ++i)
-                  {
-                    const double gi_gT = fe_values.shape_grad(i, q) * grad_T[q];
-                    for (unsigned int j = 0; j < n; ++j)
-                      local_A(i, j) += (k * (fe_values.shape_grad(i, q) * fe_values.shape_grad(j, q)) +
-                                        dk * fe_values.shape_value(j, q) * gi_gT) * w;
-                  }
-            }
-          for (const unsigned int f : cell->face_indices())
-            if (cell->face(f)->at_boundary())
-              {
-                const auto bc = boundary_conditions.boundaries.find(cell->face(f)->boundary_id());
-                if (bc == boundary_conditions.boundaries.end() || bc->second.temperature)
-                  continue;
-                const auto &b = bc->second;
-                fe_face.reinit(cell, f);
-                fe_face.get_function_values(T, T_f);
-                for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                  {
-                    const Point<dim> &x = fe_face.quadrature_point(q);
-                    const double w  = fe_face.JxW(q) * (axi ? 2 * numbers::PI * x[0] : 1.);
-                    double q_in = 0, dq_dT = 0;
-                    if (b.flux)
-                      q_in += b.flux->value(x);
-                    if (b.h)
-                      {
-                        const double h = b.h->value(x);
-                        q_in += h * (b.T_convection->value(x) - T_f[q]);
-                        dq_dT -= h;
-                      }
-                    if (b.emissivity)
-                      {
-                        const double es = b.emissivity->value(x) * stefan_boltzmann;
-                        const double Ti = b.T_radiation->value(x);
-                        q_in += es * (Ti * Ti * Ti * Ti - std::pow(T_f[q], 4));
-                        dq_dT -= 4 * es * std::pow(T_f[q], 3);
-                      }
-                    for (unsigned int i = 0; i < n; ++i)
-                      {
-                        local_f(i) += fe_face.shape_value(i, q) * q_in * w;
-                        for (unsigned int j = 0; j < n; ++j)
-                          local_A(i, j) -= dq_dT * fe_face.shape_value(i, q) * fe_face.shape_value(j, q) * w;
-                      }
-                  }
-              }
-          if (rhs)
-            constraints.distribute_local_to_global(local_f, dofs, *rhs);
-          if (tangent)
-            constraints.distribute_local_to_global(local_A, dofs, *tangent);
+          thermal::VolumeSource::cell_rates<dim>(s, cell, expression, &heat_source,
+                                                 any_g_dot ? m.density * m.heat_capacity : 0., axi);
+          thermal::volume_residual(s, m, c);
         }
+      if (tangent)
+        thermal::Conduction::cell_tangent(s, m, c);
+      for (const unsigned int f : cell->face_indices())
+        if (cell->face(f)->at_boundary())
+          {
+            const auto bc = boundary_conditions.boundaries.find(cell->face(f)->boundary_id());
+            if (bc == boundary_conditions.boundaries.end() || bc->second.temperature)
+              continue;
+            thermal::boundary_face<dim>(s, cell, f, bc->second, &T, axi, tangent != nullptr, c);
+          }
+    };
+    auto copier = [&](const thermal::CopyData &c) {
+      if (rhs)
+        constraints.distribute_local_to_global(c.vector, c.dofs, *rhs);
+      if (tangent)
+        constraints.distribute_local_to_global(c.matrix, c.dofs, *tangent);
+    };
+    for_owned_cells(dof_handler, worker, copier, scratch);
+
     if (rhs)
       {
         rhs->compress(VectorOperation::add);
@@ -379,268 +344,20 @@ namespace anvil
   }
 
   template <int dim>
-  void ThermalProblem<dim>::setup_newton(const double gamma)
+  typename ThermalProblem<dim>::AssembledSystem
+  ThermalProblem<dim>::assemble_system(const double t, const Vector &T, const double gamma, Vector &f)
   {
-    // M − γ'J with γ' within 20 % of γ preconditions ARKode's GMRES on M − γJ
-    // well (a few iterations): keep the factorisation.
-    if (current_gamma > 0 && std::abs(gamma / current_gamma - 1) < 0.2)
-      return;
-    TimerOutput::Scope t(timer, "Heat: Newton matrix");
-    if (parameters.lumped_mass)
-      {
-        newton_matrix.copy_from(tangent_matrix);
-        newton_matrix *= gamma;
-        for (const auto i : locally_owned_dofs)
-          newton_matrix.add(i, i, lumped_mass(i));
-        newton_matrix.compress(VectorOperation::add);
-      }
-    else
-      {
-        newton_matrix.copy_from(mass_matrix);
-        newton_matrix.add(gamma, tangent_matrix);
-      }
-    if (exchange.add_diagonal)
-      {
-        // The exchange's diagonal (its couplings act through GMRES only).
-        Vector diagonal(locally_owned_dofs, mpi_communicator);
-        exchange.add_diagonal(diagonal);
-        for (const auto i : locally_owned_dofs)
-          if (diagonal(i) != 0)
-            newton_matrix.add(i, i, gamma * diagonal(i));
-        newton_matrix.compress(VectorOperation::add);
-      }
-    if (use_direct)
-      {
-        newton_direct = std::make_unique<TrilinosWrappers::SolverDirect>(
-          direct_control, TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
-        newton_direct->initialize(newton_matrix);
-      }
-    else
-      {
-        TrilinosWrappers::PreconditionAMG::AdditionalData data;
-        data.elliptic              = true;
-        data.higher_order_elements = parameters.polynomial_degree > 1;
-        data.smoother_sweeps       = 2;
-        newton_amg                 = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-        newton_amg->initialize(newton_matrix, data);
-      }
-    current_gamma = gamma;
+    assemble_mass();
+    operators_current = true;
+    assemble(t, T, nullptr, &tangent_matrix);
+    tangent_current = true;
+    sources_current = false;
+    f.reinit(locally_owned_dofs, mpi_communicator);
+    assemble(t, T, &f, nullptr);
+    if (gamma > 0)
+      setup_newton(gamma);
+    return {mass_matrix, tangent_matrix, newton_matrix};
   }
 
-  template <int dim>
-  unsigned int ThermalProblem<dim>::solve_newton(Vector &x, const Vector &b, double)
-  {
-    if (use_direct)
-      {
-        newton_direct->solve(x, b);
-        return 1;
-      }
-    newton_amg->vmult(x, b); // one V-cycle: the preconditioner of ARKode's GMRES
-    return 1;
-  }
-
-  template <int dim>
-  unsigned int ThermalProblem<dim>::solve_mass(Vector &x, const Vector &b, const double tolerance)
-  {
-    ++mass_solves;
-    if (parameters.lumped_mass)
-      {
-        x = b;
-        for (const auto i : locally_owned_dofs)
-          x(i) /= lumped_mass(i);
-        x.compress(VectorOperation::insert);
-        return 1;
-      }
-    SolverControl control(1000, std::min(tolerance, 1e-10 * b.l2_norm()));
-    SolverCG<Vector> cg(control);
-    x = 0;
-    cg.solve(mass_matrix, x, b, mass_jacobi);
-    linear_iterations += control.last_step();
-    return control.last_step();
-  }
-
-  template <int dim>
-  std::map<types::boundary_id, double> ThermalProblem<dim>::boundary_flows(const double t,
-                                                                         const Vector &T) const
-  {
-    std::map<types::boundary_id, double> power;
-    for (const auto &[id, b] : boundary_conditions.boundaries)
-      if (!b.temperature)
-        {
-          power[id] = 0;
-          for (const auto &f : {b.flux, b.h, b.T_convection, b.emissivity, b.T_radiation})
-            if (f)
-              f->set_time(t);
-        }
-    FEFaceValues<dim> fe_face(get_mapping(), fe, face_quadrature,
-                              update_values | update_JxW_values | update_quadrature_points);
-    std::vector<double> T_f(face_quadrature.size());
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary())
-            {
-              const auto it = power.find(cell->face(f)->boundary_id());
-              if (it == power.end())
-                continue;
-              const auto &b = boundary_conditions.boundaries.at(it->first);
-              fe_face.reinit(cell, f);
-              fe_face.get_function_values(T, T_f);
-              for (unsigned int q = 0; q < face_quadrature.size(); ++q)
-                {
-                  const Point<dim> &x = fe_face.quadrature_point(q);
-                  double q_in = 0;
-                  if (b.flux)
-                    q_in += b.flux->value(x);
-                  if (b.h)
-                    q_in += b.h->value(x) * (b.T_convection->value(x) - T_f[q]);
-                  if (b.emissivity)
-                    q_in += b.emissivity->value(x) * stefan_boltzmann *
-                            (std::pow(b.T_radiation->value(x), 4) - std::pow(T_f[q], 4));
-                  it->second += q_in * fe_face.JxW(q) *
-                                (parameters.axisymmetric ? 2 * numbers::PI * x[0] : 1.);
-                }
-            }
-    for (auto &[id, p] : power)
-      p = Utilities::MPI::sum(p, mpi_communicator);
-    return power;
-  }
-
-  template <int dim>
-  double ThermalProblem<dim>::source_power(const double t) const
-  {
-    if (!source_function && !heat_source)
-      return 0;
-    if (source_function)
-      source_function->set_time(t);
-    FEValues<dim> fe_values(get_mapping(), fe, quadrature, update_JxW_values | update_quadrature_points);
-    double        power = 0;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              const Point<dim> &x = fe_values.quadrature_point(q);
-              double s = source_function ? source_function->value(x) : 0.;
-              if (heat_source)
-                s += heat_source(cell, q);
-              power += s * fe_values.JxW(q) * (parameters.axisymmetric ? 2 * numbers::PI * x[0] : 1.);
-            }
-        }
-    return Utilities::MPI::sum(power, mpi_communicator);
-  }
-
-  template <int dim>
-  double ThermalProblem<dim>::heat_content(const Vector &T) const
-  {
-    // ∫ ρ c T dv = ∫ ρ₀ c T dV (mass conservation).
-    FEValues<dim> fe_values(reference_mapping, fe, quadrature,
-                            update_values | update_JxW_values | update_quadrature_points);
-    std::vector<double> T_q(quadrature.size());
-    double              H = 0;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values.get_function_values(T, T_q);
-          const auto &m = materials.at(cell->material_id());
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            H += m.density * m.heat_capacity * T_q[q] * fe_values.JxW(q) *
-                 (parameters.axisymmetric ? 2 * numbers::PI * fe_values.quadrature_point(q)[0] : 1.);
-        }
-    return Utilities::MPI::sum(H, mpi_communicator);
-  }
-
-  template <int dim>
-  double ThermalProblem<dim>::integrate(const HeatSource &source) const
-  {
-    FEValues<dim> fe_values(get_mapping(), fe, quadrature, update_JxW_values | update_quadrature_points);
-    double        total = 0;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            total += source(cell, q) * fe_values.JxW(q) *
-                     (parameters.axisymmetric ? 2 * numbers::PI * fe_values.quadrature_point(q)[0] : 1.);
-        }
-    return Utilities::MPI::sum(total, mpi_communicator);
-  }
-
-  template <int dim>
-  double ThermalProblem<dim>::temperature_at(const Point<dim> &point) const
-  {
-    double value = 0, found = 0;
-    try
-      {
-        const auto cell_and_point =
-          GridTools::find_active_cell_around_point(reference_mapping, dof_handler, point);
-        const auto &cell = cell_and_point.first;
-        if (cell.state() == IteratorState::valid && cell->is_locally_owned())
-          {
-            const Quadrature<dim> q(GeometryInfo<dim>::project_to_unit_cell(cell_and_point.second));
-            FEValues<dim>         fe_values(reference_mapping, fe, q, update_values);
-            fe_values.reinit(cell);
-            std::vector<double> T(1);
-            fe_values.get_function_values(temperature_ghosted, T);
-            value = T[0];
-            found = 1;
-          }
-      }
-    catch (...)
-      {
-        // not in this rank's part of the mesh
-      }
-    const double n = Utilities::MPI::sum(found, mpi_communicator);
-    value          = Utilities::MPI::sum(value, mpi_communicator);
-    return n > 0 ? value / n : std::numeric_limits<double>::quiet_NaN();
-  }
-
-  template <int dim>
-  dealii::Vector<double> ThermalProblem<dim>::cell_mean_temperature() const
-  {
-    dealii::Vector<double> mean(triangulation.n_active_cells());
-    FEValues<dim>         fe_values(reference_mapping, fe, quadrature, update_values | update_JxW_values);
-    std::vector<double>   T(quadrature.size());
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          fe_values.get_function_values(temperature_ghosted, T);
-          double sum = 0, volume = 0;
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            sum += T[q] * fe_values.JxW(q), volume += fe_values.JxW(q);
-          mean[cell->active_cell_index()] = sum / volume;
-        }
-    return mean;
-  }
-
-  template <int dim>
-  double ThermalProblem<dim>::heat_content() const
-  {
-    return heat_content(temperature_ghosted);
-  }
-
-  template <int dim>
-  void ThermalProblem<dim>::temperature_at_quadrature_points(
-    const typename Triangulation<dim>::active_cell_iterator &cell, const Quadrature<dim> &q,
-    std::vector<double> &T_new, std::vector<double> &T_old) const
-  {
-    if (!point_values || !(q == *point_quadrature))
-      {
-        point_quadrature = std::make_unique<Quadrature<dim>>(q);
-        point_values = std::make_unique<FEValues<dim>>(reference_mapping, fe, *point_quadrature, update_values);
-      }
-    const typename DoFHandler<dim>::active_cell_iterator dof_cell(&triangulation, cell->level(),
-                                                                  cell->index(), &dof_handler);
-    point_values->reinit(dof_cell);
-    T_new.resize(q.size());
-    T_old.resize(q.size());
-    point_values->get_function_values(temperature_ghosted, T_new);
-    point_values->get_function_values(old_temperature_ghosted, T_old);
-  }
-
-  template class ThermalProblem<2>;
-  template class ThermalProblem<3>;
+  ANVIL_INSTANTIATE_CLASS(ThermalProblem)
 } // namespace anvil

@@ -174,7 +174,8 @@ namespace anvil
 
     /// Volumetric source per quadrature point of QGauss(p + 1) (p = Polynomial
     /// degree of the temperature; the mechanics' quadrature when the degrees
-    /// match), in mW/mm³ = MPa/s, held constant over a step.
+    /// match), in mW/mm³ = MPa/s, held constant over a step. The assembly
+    /// calls it from several threads at once: it must only read.
     using HeatSource = std::function<double(const CellIterator &cell, unsigned int q)>;
 
     ThermalProblem(const dealii::parallel::distributed::Triangulation<dim> &triangulation,
@@ -193,11 +194,28 @@ namespace anvil
                            const Vector                  &displacement_ghosted);
     void set_heat_source(const HeatSource &source);
 
-    /// Heat exchanged at nodes outside the cells' coupling (contact, eq. 30–33).
+    /// Heat exchanged at nodes outside the cells' coupling (contact, eq. 30–33;
+    /// core/heat_exchange.h). Called on the main thread of every process after
+    /// the threaded cell loops (the contact's functions communicate).
     using Exchange = HeatExchange;
     void set_exchange(const Exchange &e) { exchange = e; }
     /// Hanging-node or Temperature constraint on dof @p i (exchange skips those rows).
     bool is_constrained(dealii::types::global_dof_index i) const { return constraints.is_constrained(i); }
+
+    /// The operators of the semi-discrete system, as assemble_system left them.
+    struct AssembledSystem
+    {
+      const dealii::TrilinosWrappers::SparseMatrix &mass, &tangent, &newton;
+    };
+    /**
+     * For tests and benchmarks only (the time integration never calls it):
+     * assemble, at the owned temperature @p T and time @p t, the mass matrix
+     * M, the tangent A = ∂(K T − F)/∂T and f(T, t) into @p f (reinit'ed);
+     * with @p gamma > 0 also the Newton matrix M + γA (and its factorisation
+     * or AMG, as the solver would). The references stay valid until the next
+     * assembly or solve_step.
+     */
+    AssembledSystem assemble_system(double t, const Vector &T, double gamma, Vector &f);
 
     /// Advance T from the committed state at @p time_old to @p time_new.
     Statistics solve_step(double time_old, double time_new);
@@ -255,7 +273,9 @@ namespace anvil
     double source_heat() const { return total_source; }
 
     /// T at the points of @p quadrature in @p cell (a cell of the shared
-    /// triangulation): the current and the committed values.
+    /// triangulation): the current and the committed values. Not reentrant
+    /// (it caches an FEValues): call it from one thread, as the coupling does
+    /// when it fills the per-point temperatures the mechanics reads.
     void temperature_at_quadrature_points(
       const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
       const dealii::Quadrature<dim>                                   &quadrature,
@@ -267,6 +287,12 @@ namespace anvil
     void   assemble_mass();
     /// r = f(T, t) (if @p rhs) and A = ∂(K T − F)/∂T (if @p tangent), T from the owned @p y.
     void   assemble(double t, const Vector &y, Vector *rhs, dealii::TrilinosWrappers::SparseMatrix *tangent);
+    /// F = ∫ s φ dv of the mechanics' sources into step_sources (fast linear path).
+    void   assemble_step_sources();
+    /// rhs += the prescribed fluxes at t (fast linear path).
+    void   add_prescribed_fluxes(double t, Vector &rhs);
+    /// ġ at the Dirichlet dofs at t where it is not zero (central difference).
+    std::map<dealii::types::global_dof_index, double> dirichlet_rates(double t) const;
     /// Dirichlet values g(t) at the constrained dofs (locally relevant).
     void   dirichlet_values(double t, std::map<dealii::types::global_dof_index, double> &values) const;
     void   apply_dirichlet(double t, Vector &y) const;

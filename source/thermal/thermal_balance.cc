@@ -1,0 +1,203 @@
+// ThermalProblem: the heat-balance integrals (boundary flows, sources, heat
+// content) and the temperature at points. Serial loops: these are sums of
+// doubles whose order a threaded loop would change.
+#include <deal.II/base/utilities.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_tools.h>
+
+#include <anvil/core/instantiate.h>
+#include <anvil/thermal/kernels.h>
+#include <anvil/thermal/thermal_problem.h>
+
+#include <cmath>
+#include <limits>
+
+namespace anvil
+{
+  using namespace dealii;
+  using thermal::stefan_boltzmann;
+
+  template <int dim>
+  std::map<types::boundary_id, double> ThermalProblem<dim>::boundary_flows(const double t,
+                                                                         const Vector &T) const
+  {
+    std::map<types::boundary_id, double> power;
+    for (const auto &[id, b] : boundary_conditions.boundaries)
+      if (!b.temperature)
+        {
+          power[id] = 0;
+          for (const auto &f : {b.flux, b.h, b.T_convection, b.emissivity, b.T_radiation})
+            if (f)
+              f->set_time(t);
+        }
+    FEFaceValues<dim> fe_face(get_mapping(), fe, face_quadrature,
+                              update_values | update_JxW_values | update_quadrature_points);
+    std::vector<double> T_f(face_quadrature.size());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            {
+              const auto it = power.find(cell->face(f)->boundary_id());
+              if (it == power.end())
+                continue;
+              const auto &b = boundary_conditions.boundaries.at(it->first);
+              fe_face.reinit(cell, f);
+              fe_face.get_function_values(T, T_f);
+              for (unsigned int q = 0; q < face_quadrature.size(); ++q)
+                {
+                  const Point<dim> &x = fe_face.quadrature_point(q);
+                  double q_in = 0;
+                  if (b.flux)
+                    q_in += b.flux->value(x);
+                  if (b.h)
+                    q_in += b.h->value(x) * (b.T_convection->value(x) - T_f[q]);
+                  if (b.emissivity)
+                    q_in += b.emissivity->value(x) * stefan_boltzmann *
+                            (std::pow(b.T_radiation->value(x), 4) - std::pow(T_f[q], 4));
+                  it->second += q_in * fe_face.JxW(q) *
+                                (parameters.axisymmetric ? 2 * numbers::PI * x[0] : 1.);
+                }
+            }
+    for (auto &[id, p] : power)
+      p = Utilities::MPI::sum(p, mpi_communicator);
+    return power;
+  }
+
+  template <int dim>
+  double ThermalProblem<dim>::source_power(const double t) const
+  {
+    if (!source_function && !heat_source)
+      return 0;
+    if (source_function)
+      source_function->set_time(t);
+    FEValues<dim> fe_values(get_mapping(), fe, quadrature, update_JxW_values | update_quadrature_points);
+    double        power = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const Point<dim> &x = fe_values.quadrature_point(q);
+              double s = source_function ? source_function->value(x) : 0.;
+              if (heat_source)
+                s += heat_source(cell, q);
+              power += s * fe_values.JxW(q) * (parameters.axisymmetric ? 2 * numbers::PI * x[0] : 1.);
+            }
+        }
+    return Utilities::MPI::sum(power, mpi_communicator);
+  }
+
+  template <int dim>
+  double ThermalProblem<dim>::heat_content(const Vector &T) const
+  {
+    // ∫ ρ c T dv = ∫ ρ₀ c T dV (mass conservation).
+    FEValues<dim> fe_values(reference_mapping, fe, quadrature,
+                            update_values | update_JxW_values | update_quadrature_points);
+    std::vector<double> T_q(quadrature.size());
+    double              H = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(T, T_q);
+          const auto &m = materials.at(cell->material_id());
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            H += m.density * m.heat_capacity * T_q[q] * fe_values.JxW(q) *
+                 (parameters.axisymmetric ? 2 * numbers::PI * fe_values.quadrature_point(q)[0] : 1.);
+        }
+    return Utilities::MPI::sum(H, mpi_communicator);
+  }
+
+  template <int dim>
+  double ThermalProblem<dim>::integrate(const HeatSource &source) const
+  {
+    FEValues<dim> fe_values(get_mapping(), fe, quadrature, update_JxW_values | update_quadrature_points);
+    double        total = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            total += source(cell, q) * fe_values.JxW(q) *
+                     (parameters.axisymmetric ? 2 * numbers::PI * fe_values.quadrature_point(q)[0] : 1.);
+        }
+    return Utilities::MPI::sum(total, mpi_communicator);
+  }
+
+  template <int dim>
+  double ThermalProblem<dim>::temperature_at(const Point<dim> &point) const
+  {
+    double value = 0, found = 0;
+    try
+      {
+        const auto cell_and_point =
+          GridTools::find_active_cell_around_point(reference_mapping, dof_handler, point);
+        const auto &cell = cell_and_point.first;
+        if (cell.state() == IteratorState::valid && cell->is_locally_owned())
+          {
+            const Quadrature<dim> q(GeometryInfo<dim>::project_to_unit_cell(cell_and_point.second));
+            FEValues<dim>         fe_values(reference_mapping, fe, q, update_values);
+            fe_values.reinit(cell);
+            std::vector<double> T(1);
+            fe_values.get_function_values(temperature_ghosted, T);
+            value = T[0];
+            found = 1;
+          }
+      }
+    catch (...)
+      {
+        // not in this rank's part of the mesh
+      }
+    const double n = Utilities::MPI::sum(found, mpi_communicator);
+    value          = Utilities::MPI::sum(value, mpi_communicator);
+    return n > 0 ? value / n : std::numeric_limits<double>::quiet_NaN();
+  }
+
+  template <int dim>
+  dealii::Vector<double> ThermalProblem<dim>::cell_mean_temperature() const
+  {
+    dealii::Vector<double> mean(triangulation.n_active_cells());
+    FEValues<dim>         fe_values(reference_mapping, fe, quadrature, update_values | update_JxW_values);
+    std::vector<double>   T(quadrature.size());
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          fe_values.get_function_values(temperature_ghosted, T);
+          double sum = 0, volume = 0;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            sum += T[q] * fe_values.JxW(q), volume += fe_values.JxW(q);
+          mean[cell->active_cell_index()] = sum / volume;
+        }
+    return mean;
+  }
+
+  template <int dim>
+  double ThermalProblem<dim>::heat_content() const
+  {
+    return heat_content(temperature_ghosted);
+  }
+
+  template <int dim>
+  void ThermalProblem<dim>::temperature_at_quadrature_points(
+    const typename Triangulation<dim>::active_cell_iterator &cell, const Quadrature<dim> &q,
+    std::vector<double> &T_new, std::vector<double> &T_old) const
+  {
+    if (!point_values || !(q == *point_quadrature))
+      {
+        point_quadrature = std::make_unique<Quadrature<dim>>(q);
+        point_values = std::make_unique<FEValues<dim>>(reference_mapping, fe, *point_quadrature, update_values);
+      }
+    const typename DoFHandler<dim>::active_cell_iterator dof_cell(&triangulation, cell->level(),
+                                                                  cell->index(), &dof_handler);
+    point_values->reinit(dof_cell);
+    T_new.resize(q.size());
+    T_old.resize(q.size());
+    point_values->get_function_values(temperature_ghosted, T_new);
+    point_values->get_function_values(old_temperature_ghosted, T_old);
+  }
+
+  ANVIL_INSTANTIATE_CLASS(ThermalProblem)
+} // namespace anvil
