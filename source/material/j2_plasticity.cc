@@ -133,13 +133,11 @@ namespace anvil
 
   // ---------------------------------------------------------------- J2Model
 
-  void J2Model::declare_parameters(ParameterHandler &prm)
+  void J2Model::declare_elasticity_parameters(ParameterHandler &prm)
   {
     prm.enter_subsection("Elasticity");
     ElasticLaw::declare_parameters(prm);
     prm.leave_subsection();
-    HardeningLaw::declare_parameters(prm);
-    PerzynaLaw::declare_parameters(prm);
   }
 
   void J2Model::parse_parameters(ParameterHandler &prm, const Scene &scene, const std::string &path)
@@ -148,7 +146,9 @@ namespace anvil
     elastic.parse_parameters(prm, scene, path + "/Elasticity");
     prm.leave_subsection();
     if (plastic)
-      hardening.parse_parameters(prm, scene, path);
+      hardening = create_hardening_law(prm, scene, path);
+    if (viscous)
+      viscosity.parse_parameters(prm, scene, path, elastic.reference_temperature);
   }
 
   namespace
@@ -297,7 +297,7 @@ namespace anvil
                                HardeningLaw::Value       &Y,
                                PerzynaLaw::Value         &V) const
     {
-      const HardeningLaw &hardening = model.hardening;
+      const HardeningLaw &hardening = *model.hardening;
       const PerzynaLaw   &viscosity = model.viscosity;
       // r and rx = Δε̄ r'(Δε̄) = dr/d ln Δε̄ (finite where r' is not: V ∝ Δε̄^{1/m}),
       // with σᵥ and V at Δε̄ in y and v.
@@ -502,7 +502,7 @@ namespace anvil
       response.return_iterations = 0;
       if (model.plastic)
         {
-          Y = Y_start = model.hardening.evaluate(eps_n, T);
+          Y = Y_start = model.hardening->evaluate(eps_n, T);
           if (!(Y.stress > 0))
             throw MaterialPointError("the yield stress is " + std::to_string(Y.stress) +
                                      " MPa <= 0 at T = " + std::to_string(T) +
@@ -510,20 +510,20 @@ namespace anvil
           if (q_trial > Y.stress)
             {
               rate = model.viscosity.at(T, inc.time_step);
-              if (model.hardening.is_linear() && !rate.active())
+              if (model.hardening->is_linear() && !rate.active())
                 {
                   // Linear hardening, rate-independent: r is linear in Δε̄.
                   const double h = Y_start.slope;
                   if (!(h >= 0))
                     {
                       const double hi = q_trial / (3 * G);
-                      if (q_trial - 3 * G * hi - model.hardening.evaluate(eps_n + hi, T).stress > 0)
+                      if (q_trial - 3 * G * hi - model.hardening->evaluate(eps_n + hi, T).stress > 0)
                         throw no_plastic_solution(T);
                     }
                   dp                         = (q_trial - Y_start.stress) / (3 * G + h);
                   response.return_iterations = 1;
                   if (request & request_temperature_derivative)
-                    Y = model.hardening.evaluate(eps_n + dp, T);
+                    Y = model.hardening->evaluate(eps_n + dp, T);
                   else
                     Y.stress = Y_start.stress + h * dp;
                 }
