@@ -186,3 +186,9 @@ print("two blocks (prm/two_blocks.prm), one process: %.2f s wall (seed 18.33 s),
                                       s["newton_iterations"] / s["steps"], s["heat"]["arkode_steps_per_step"],
                                       q["delta_T_upper"], q["delta_T_lower"]))
 PY
+# The parts refactor (issue 10): every shipped scene before and after, and the
+# run time of the regression layer (tests/regression.py, ctest -L regression).
+python3 "$ANVIL_ROOT/contrib/bench/compare_walltimes.py" "$ANVIL_BUILD"
+start=$(date +%s.%N)
+(cd "$ANVIL_BUILD" && ctest -L regression -j2 > "$out/regression.log" 2>&1) || echo "regression layer: FAILED (see $out/regression.log)"
+echo "regression layer: $(grep -c 'Passed' "$out/regression.log") cases, $(python3 -c "import sys; print(round(float(sys.argv[2]) - float(sys.argv[1]), 1))" "$start" "$(date +%s.%N)") s wall on ctest -j2"

@@ -36,7 +36,7 @@ expect "unknown option"     "unknown option '--frobnicate'"               "$anvi
 expect "bad probe"          "--set: 'Output/Probes'"                       "$anvil" "$src/prm/cantilever.prm" --set "Output/Probes=tip: 10"
 expect "unknown QoI probe"  "'Output/Quantities of interest'.*no probe named 'tap'" "$anvil" "$src/prm/cantilever.prm" --set "Output/Quantities of interest=a: probe(tap, ux)"
 expect "reaction in a thermal-only scene" "--set: 'Output/Quantities of interest'.*reaction.*needs the mechanics.*thermal only" "$anvil" "$src/prm/heat_half_space.prm" --set "Output/Quantities of interest=r: reaction(left, x)"
-expect "unknown coupling"   "--set 'Physics/Coupling=heat'.*heat.*(mechanical only\|thermal only)" "$anvil" "$src/prm/heat_half_space.prm" --set "Physics/Coupling=heat"
+expect "unknown coupling"   "--set 'Physics/Coupling=heat'.*heat.*mechanical only.*thermal only" "$anvil" "$src/prm/heat_half_space.prm" --set "Physics/Coupling=heat"
 expect "mechanics in a thermal-only scene" "--set: 'Boundary conditions/Displacement' is given, but Physics/Coupling is 'thermal only'" "$anvil" "$src/prm/heat_half_space.prm" --set "Boundary conditions/Displacement=left: ux = 0"
 # Contact pairs and rigid tools (tests/contact_block.prm: pair 'sliding' of
 # the boundary 'bottom' on the plane tool 'floor', mu = 0.3, c_T = 1e4).

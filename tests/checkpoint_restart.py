@@ -60,4 +60,27 @@ a, b = read_csv(out_full + "/probes.csv"), read_csv(out_half + "/probes.csv")
 check(len(a["time"]) == len(b["time"]) and
       max(abs(x - y) for x, y in zip(a["corner_temperature"], b["corner_temperature"])) < 1e-7,
       "the same temperature history at the probe (%d rows)" % len(b["time"]))
+# A checkpoint that does not match the scene is refused before any work, with
+# one line naming Output/Restart from and what differs (exit 2).
+import subprocess
+from anvil_test import ANVIL, SOURCE_DIR
+def refused(scene, sets, expected, what):
+    cmd = [ANVIL, os.path.join(SOURCE_DIR, scene)]
+    for x in sets:
+        cmd += ["--set", x]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    lines = p.stderr.strip().splitlines()
+    check(p.returncode == 2 and len(lines) == 1 and "Output/Restart from" in p.stderr and expected in p.stderr
+          and "Timer" not in p.stdout + p.stderr,
+          "%s refused: exit %d, %r" % (what, p.returncode, p.stderr.strip()))
+ckpt = "Output/Restart from=" + out_half + "/checkpoint"
+refused("tests/plastic_block.prm", heat[1:] + ["Physics/Coupling=isothermal split", ckpt],
+        "Physics/Coupling = 'adiabatic split', this scene has 'isothermal split'", "another coupling scheme")
+refused("prm/two_blocks.prm", ["Physics/Coupling=adiabatic split", ckpt],
+        "Bodies/Names = 'body', this scene has 'lower,upper'", "a checkpoint of a scene with other bodies")
+state = os.path.join(out_half, "checkpoint", "state.txt")
+text = open(state).read()
+open(state, "w").write(text.replace("anvil-checkpoint 2", "anvil-checkpoint 1", 1))
+refused("tests/plastic_block.prm", heat + [ckpt], "checkpoint format 1", "a checkpoint of another format")
+open(state, "w").write(text)
 finish()

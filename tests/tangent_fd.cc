@@ -14,7 +14,7 @@
 
 #include <anvil/core/scene.h>
 #include <anvil/material/material_point.h>
-#include <anvil/mechanics/kinematics.h>
+#include <anvil/material/kinematics.h>
 
 #include <cmath>
 #include <iostream>

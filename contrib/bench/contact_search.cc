@@ -31,7 +31,7 @@
 #include <anvil/contact/contact_problem.h>
 #include <anvil/core/input_error.h>
 #include <anvil/core/scene.h>
-#include <anvil/core/simulator.h>
+#include <anvil/simulator/simulator.h>
 #include <anvil/geometry/geometry.h>
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // anvil: the command-line program. Everything lives in libanvil.
-#include <anvil/core/simulator.h>
+#include <anvil/simulator/simulator.h>
 
 int main(int argc, char **argv)
 {

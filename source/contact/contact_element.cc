@@ -3,6 +3,7 @@
 
 #include <anvil/contact/ad_helpers.h>
 #include <anvil/contact/contact_element.h>
+#include <anvil/core/instantiate.h>
 
 #include <array>
 #include <cmath>
@@ -438,17 +439,16 @@ namespace anvil
       return evaluate<dim>(coordinates, geometry, state, law, tangent);
     }
 
-    template bool face_order_gives_outward_normal<2>(unsigned int);
-    template bool face_order_gives_outward_normal<3>(unsigned int);
-    template ContactResult<2> node_to_segment(const Point<2> &, const Point<2> &, const std::vector<Point<2>> &,
-                                              const std::vector<Point<2>> &, const NodeState<2> &,
-                                              const FrictionLaw &, bool);
-    template ContactResult<3> node_to_segment(const Point<3> &, const Point<3> &, const std::vector<Point<3>> &,
-                                              const std::vector<Point<3>> &, const NodeState<3> &,
-                                              const FrictionLaw &, bool);
-    template ContactResult<2> node_to_tool(const Point<2> &, const Point<2> &, const RigidTool<2> &, double,
-                                           double, const NodeState<2> &, const FrictionLaw &, bool);
-    template ContactResult<3> node_to_tool(const Point<3> &, const Point<3> &, const RigidTool<3> &, double,
-                                           double, const NodeState<3> &, const FrictionLaw &, bool);
+#define INSTANTIATE(dim)                                                                           \
+  template bool              face_order_gives_outward_normal<dim>(unsigned int);                  \
+  template ContactResult<dim> node_to_segment(const Point<dim> &, const Point<dim> &,             \
+                                              const std::vector<Point<dim>> &,                    \
+                                              const std::vector<Point<dim>> &,                    \
+                                              const NodeState<dim> &, const FrictionLaw &, bool); \
+  template ContactResult<dim> node_to_tool(const Point<dim> &, const Point<dim> &,                \
+                                           const RigidTool<dim> &, double, double,                \
+                                           const NodeState<dim> &, const FrictionLaw &, bool);
+    ANVIL_INSTANTIATE(INSTANTIATE)
+#undef INSTANTIATE
   } // namespace contact
 } // namespace anvil

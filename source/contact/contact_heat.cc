@@ -6,6 +6,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <anvil/contact/contact_problem.h>
+#include <anvil/core/instantiate.h>
 
 #include <algorithm>
 #include <cmath>
@@ -179,15 +180,15 @@ namespace anvil
   }
 
   template <int dim>
-  typename ThermalProblem<dim>::Exchange
-  ContactProblem<dim>::heat_exchange(const ThermalProblem<dim> &thermal)
+  HeatExchange ContactProblem<dim>::heat_exchange(
+    const std::function<bool(types::global_dof_index)> &is_constrained)
   {
     // Q = hA (T_s − T_m(ξ)) from slave to master (eq. 30); D split by the
     // relative effusivity (eq. 32–33); a tool is a reservoir at T_tool(t).
-    auto writable = [this, &thermal](const unsigned int n) {
-      return node_thermal_owned[n] && !thermal.is_constrained(node_thermal_dof[n]);
+    auto writable = [this, is_constrained](const unsigned int n) {
+      return node_thermal_owned[n] && !is_constrained(node_thermal_dof[n]);
     };
-    typename ThermalProblem<dim>::Exchange e;
+    HeatExchange e;
     e.add_rhs = [this, writable](const double t, const Vector &T, Vector &f) {
       const auto Tn = gather_node_values(T);
       for (const auto &h : heat_elements)
@@ -265,22 +266,5 @@ namespace anvil
   }
 
   // The class is instantiated in contact_problem.cc; these are its heat members.
-  template double ContactProblem<2>::characteristic_area(unsigned int, types::boundary_id,
-                                                        const Tensor<1, 2> &) const;
-  template bool   ContactProblem<2>::has_heat() const;
-  template void   ContactProblem<2>::setup_heat(const DoFHandler<2> &);
-  template std::vector<double> ContactProblem<2>::gather_node_values(const Vector &) const;
-  template void   ContactProblem<2>::prepare_heat(double);
-  template typename ThermalProblem<2>::Exchange
-  ContactProblem<2>::heat_exchange(const ThermalProblem<2> &);
-  template double ContactProblem<2>::account_heat(const Vector &, const Vector &, double);
-  template double ContactProblem<3>::characteristic_area(unsigned int, types::boundary_id,
-                                                        const Tensor<1, 3> &) const;
-  template bool   ContactProblem<3>::has_heat() const;
-  template void   ContactProblem<3>::setup_heat(const DoFHandler<3> &);
-  template std::vector<double> ContactProblem<3>::gather_node_values(const Vector &) const;
-  template void   ContactProblem<3>::prepare_heat(double);
-  template typename ThermalProblem<3>::Exchange
-  ContactProblem<3>::heat_exchange(const ThermalProblem<3> &);
-  template double ContactProblem<3>::account_heat(const Vector &, const Vector &, double);
+  ANVIL_INSTANTIATE_CLASS(ContactProblem)
 } // namespace anvil

@@ -1,4 +1,5 @@
 #include <anvil/core/expression.h>
+#include <anvil/core/instantiate.h>
 #include <anvil/core/scene.h>
 
 #include <iostream>
@@ -57,8 +58,12 @@ namespace anvil
   }
 
   template std::shared_ptr<FunctionParser<1>> parse_expression<1>(const std::string &, const std::string &, bool, const Scene &, const std::string &, const std::string &);
-  template std::shared_ptr<FunctionParser<2>> parse_expression<2>(const std::string &, const std::string &, bool, const Scene &, const std::string &, const std::string &);
-  template std::shared_ptr<FunctionParser<3>> parse_expression<3>(const std::string &, const std::string &, bool, const Scene &, const std::string &, const std::string &);
-  template std::shared_ptr<FunctionParser<2>> parse_expression<2>(const std::string &, const Scene &, const std::string &);
-  template std::shared_ptr<FunctionParser<3>> parse_expression<3>(const std::string &, const Scene &, const std::string &);
+#define INSTANTIATE(dim)                                                                           \
+  template std::shared_ptr<FunctionParser<dim>> parse_expression<dim>(                            \
+    const std::string &, const std::string &, bool, const Scene &, const std::string &,           \
+    const std::string &);                                                                         \
+  template std::shared_ptr<FunctionParser<dim>> parse_expression<dim>(                            \
+    const std::string &, const Scene &, const std::string &);
+  ANVIL_INSTANTIATE(INSTANTIATE)
+#undef INSTANTIATE
 } // namespace anvil

@@ -6,8 +6,8 @@
 #include <anvil/core/expression.h>
 #include <anvil/core/scene.h>
 #include <anvil/material/point_driver.h>
-#include <anvil/mechanics/kinematics.h>
-#include <anvil/output/csv_history.h>
+#include <anvil/material/kinematics.h>
+#include <anvil/core/csv_history.h>
 
 #include <algorithm>
 #include <cmath>

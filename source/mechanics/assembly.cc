@@ -4,7 +4,7 @@
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_values.h>
 
-#include <anvil/mechanics/kinematics.h>
+#include <anvil/material/kinematics.h>
 #include <anvil/contact/contact_problem.h>
 #include <anvil/mechanics/mechanical_problem.h>
 

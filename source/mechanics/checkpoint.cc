@@ -106,30 +106,37 @@ namespace anvil
   }
 
   template <int dim>
-  std::vector<double> MechanicalProblem<dim>::checkpoint_scalars() const
+  NamedValues MechanicalProblem<dim>::checkpoint_scalars() const
   {
     const Energy &e = energy_audit;
-    return {e.external_work, e.internal_work, e.stress_work,    e.kinetic,
-            e.initial_kinetic, e.plastic_work, e.elastic_energy, previous_time_step};
+    return {{"external_work", e.external_work},     {"internal_work", e.internal_work},
+            {"stress_work", e.stress_work},         {"kinetic_energy", e.kinetic},
+            {"initial_kinetic_energy", e.initial_kinetic}, {"plastic_work", e.plastic_work},
+            {"elastic_energy", e.elastic_energy},   {"previous_time_step", previous_time_step}};
   }
 
   template <int dim>
-  void MechanicalProblem<dim>::restore_scalars(const std::vector<double> &v)
+  void MechanicalProblem<dim>::restore_scalars(const NamedValues &v)
   {
-    Energy &e = energy_audit;
-    e.external_work = v.at(0), e.internal_work = v.at(1), e.stress_work = v.at(2);
-    e.kinetic = v.at(3), e.initial_kinetic = v.at(4), e.plastic_work = v.at(5);
-    e.elastic_energy = v.at(6), previous_time_step = v.at(7);
+    Energy &e          = energy_audit;
+    e.external_work    = named_value(v, "external_work");
+    e.internal_work    = named_value(v, "internal_work");
+    e.stress_work      = named_value(v, "stress_work");
+    e.kinetic          = named_value(v, "kinetic_energy");
+    e.initial_kinetic  = named_value(v, "initial_kinetic_energy");
+    e.plastic_work     = named_value(v, "plastic_work");
+    e.elastic_energy   = named_value(v, "elastic_energy");
+    previous_time_step = named_value(v, "previous_time_step");
   }
 
   template void MechanicalProblem<2>::prepare_checkpoint();
   template void MechanicalProblem<3>::prepare_checkpoint();
   template void MechanicalProblem<2>::load_checkpoint();
   template void MechanicalProblem<3>::load_checkpoint();
-  template std::vector<double> MechanicalProblem<2>::checkpoint_scalars() const;
-  template std::vector<double> MechanicalProblem<3>::checkpoint_scalars() const;
-  template void MechanicalProblem<2>::restore_scalars(const std::vector<double> &);
-  template void MechanicalProblem<3>::restore_scalars(const std::vector<double> &);
+  template NamedValues MechanicalProblem<2>::checkpoint_scalars() const;
+  template NamedValues MechanicalProblem<3>::checkpoint_scalars() const;
+  template void MechanicalProblem<2>::restore_scalars(const NamedValues &);
+  template void MechanicalProblem<3>::restore_scalars(const NamedValues &);
   template std::vector<TrilinosWrappers::MPI::Vector *> MechanicalProblem<2>::checkpoint_targets();
   template std::vector<TrilinosWrappers::MPI::Vector *> MechanicalProblem<3>::checkpoint_targets();
 } // namespace anvil

@@ -13,7 +13,7 @@
 
 #include <anvil/core/input_error.h>
 #include <anvil/core/scene.h>
-#include <anvil/mechanics/kinematics.h>
+#include <anvil/material/kinematics.h>
 #include <anvil/contact/contact_problem.h>
 #include <anvil/mechanics/mechanical_problem.h>
 

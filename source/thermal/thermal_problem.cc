@@ -500,26 +500,27 @@ namespace anvil
   }
 
   template <int dim>
-  std::vector<double> ThermalProblem<dim>::checkpoint_scalars() const
+  NamedValues ThermalProblem<dim>::checkpoint_scalars() const
   {
-    // committed time, last internal step, source heat, then (id, heat) pairs.
-    std::vector<double> v = {committed_time, last_internal_step, total_source,
-                             double(total_heat_in.size())};
+    NamedValues v = {{"committed_time", committed_time},
+                     {"last_internal_step", last_internal_step},
+                     {"source_heat", total_source}};
     for (const auto &[id, q] : total_heat_in)
-      v.insert(v.end(), {double(id), q});
+      v["boundary_heat_in." + std::to_string(id)] = q;
     return v;
   }
 
   template <int dim>
-  void ThermalProblem<dim>::restore_scalars(const std::vector<double> &v)
+  void ThermalProblem<dim>::restore_scalars(const NamedValues &v)
   {
-    committed_time     = v.at(0);
-    last_internal_step = v.at(1);
-    total_source       = v.at(2);
+    committed_time     = named_value(v, "committed_time");
+    last_internal_step = named_value(v, "last_internal_step");
+    total_source       = named_value(v, "source_heat");
     total_heat_in.clear();
-    const std::size_t n = static_cast<std::size_t>(v.at(3));
-    for (std::size_t k = 0; k < n; ++k)
-      total_heat_in[static_cast<types::boundary_id>(v.at(4 + 2 * k))] = v.at(5 + 2 * k);
+    const std::string prefix = "boundary_heat_in.";
+    for (const auto &[key, q] : v)
+      if (key.rfind(prefix, 0) == 0)
+        total_heat_in[static_cast<types::boundary_id>(std::stoul(key.substr(prefix.size())))] = q;
   }
 
   template class ThermalBoundaryConditions<2>;

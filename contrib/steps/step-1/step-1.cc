@@ -14,7 +14,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <anvil/core/input_error.h>
-#include <anvil/core/simulator.h>
+#include <anvil/simulator/simulator.h>
 
 #include <cmath>
 #include <iostream>

@@ -9,7 +9,7 @@
 
 #include <anvil/contact/contact_element.h>
 #include <anvil/contact/rigid_tool.h>
-#include <anvil/thermal/thermal_problem.h>
+#include <anvil/core/heat_exchange.h>
 
 #include <functional>
 #include <map>
@@ -163,7 +163,7 @@ namespace anvil
      */
     void prepare_heat(double time_step);
     /// The exchange as the thermal problem applies it (eq. 30–33).
-    typename ThermalProblem<dim>::Exchange heat_exchange(const ThermalProblem<dim> &thermal);
+    HeatExchange heat_exchange(const std::function<bool(dealii::types::global_dof_index)> &is_constrained);
     /**
      * After an accepted thermal phase: heat exchanged over the step
      * (trapezoidal in T), friction heat; returns the heat that entered the

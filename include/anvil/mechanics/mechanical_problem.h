@@ -13,6 +13,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <anvil/core/named_values.h>
 #include <anvil/material/material_point.h>
 #include <anvil/mechanics/boundary_conditions.h>
 
@@ -204,8 +205,8 @@ namespace anvil
     void prepare_checkpoint();
     void load_checkpoint();
     /// Scalars of the committed state (energies, last step) and back.
-    std::vector<double> checkpoint_scalars() const;
-    void                restore_scalars(const std::vector<double> &values);
+    NamedValues checkpoint_scalars() const;
+    void        restore_scalars(const NamedValues &values);
 
     /// Cells per second of the last full (matrix + residual) assembly on this rank.
     double last_assembly_rate() const { return assembly_rate; }

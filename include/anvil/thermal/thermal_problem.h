@@ -17,6 +17,9 @@
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <anvil/core/heat_exchange.h>
+#include <anvil/core/named_values.h>
+
 #include <functional>
 #include <map>
 #include <memory>
@@ -190,17 +193,8 @@ namespace anvil
                            const Vector                  &displacement_ghosted);
     void set_heat_source(const HeatSource &source);
 
-    /**
-     * Heat exchanged at nodes outside the cells' coupling (contact, eq. 30–33),
-     * linear in T over a step: f += q(T), ∂q/∂T applied matrix-free. Each
-     * function writes only locally owned entries of its output.
-     */
-    struct Exchange
-    {
-      std::function<void(double t, const Vector &T, Vector &f)> add_rhs;    // f += q(T)
-      std::function<void(const Vector &v, Vector &Jv)>          add_jacobian; // Jv += ∂q/∂T v
-      std::function<void(Vector &diagonal)>                     add_diagonal; // += −diag(∂q/∂T)
-    };
+    /// Heat exchanged at nodes outside the cells' coupling (contact, eq. 30–33).
+    using Exchange = HeatExchange;
     void set_exchange(const Exchange &e) { exchange = e; }
     /// Hanging-node or Temperature constraint on dof @p i (exchange skips those rows).
     bool is_constrained(dealii::types::global_dof_index i) const { return constraints.is_constrained(i); }
@@ -239,8 +233,8 @@ namespace anvil
     void prepare_checkpoint();
     void load_checkpoint();
     /// Heat-balance accumulators and the last internal step, for state.txt.
-    std::vector<double> checkpoint_scalars() const;
-    void                restore_scalars(const std::vector<double> &values);
+    NamedValues checkpoint_scalars() const;
+    void        restore_scalars(const NamedValues &values);
     /// Heat that entered through each flux/convection/radiation boundary during
     /// the last solve_step (mJ, trapezoidal in time).
     const std::map<dealii::types::boundary_id, double> &step_boundary_heat() const

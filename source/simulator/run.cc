@@ -3,7 +3,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <anvil/core/input_error.h>
-#include <anvil/core/simulator.h>
+#include <anvil/simulator/simulator.h>
 #include <anvil/material/point_driver.h>
 
 #include <iostream>

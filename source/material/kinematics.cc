@@ -1,4 +1,5 @@
-#include <anvil/mechanics/kinematics.h>
+#include <anvil/core/instantiate.h>
+#include <anvil/material/kinematics.h>
 
 #include <array>
 
@@ -154,12 +155,11 @@ namespace anvil
     return r;
   }
 
-  template Tensor<4, 2> first_piola_tangent<2>(const IncrementalKinematics &,
-                                               const SymmetricTensor<2, 3> &,
-                                               const MaterialResponse &);
-  template Tensor<4, 3> first_piola_tangent<3>(const IncrementalKinematics &,
-                                               const SymmetricTensor<2, 3> &,
-                                               const MaterialResponse &);
-  template Tensor<2, 3> embed<2>(const Tensor<2, 2> &, double);
-  template Tensor<2, 3> embed<3>(const Tensor<2, 3> &, double);
+#define INSTANTIATE(dim)                                                                           \
+  template Tensor<4, dim> first_piola_tangent<dim>(const IncrementalKinematics &,                 \
+                                                   const SymmetricTensor<2, 3> &,                 \
+                                                   const MaterialResponse &);                     \
+  template Tensor<2, 3> embed<dim>(const Tensor<2, dim> &, double);
+  ANVIL_INSTANTIATE(INSTANTIATE)
+#undef INSTANTIATE
 } // namespace anvil

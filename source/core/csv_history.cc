@@ -1,4 +1,4 @@
-#include <anvil/output/csv_history.h>
+#include <anvil/core/csv_history.h>
 
 #include <cmath>
 #include <fstream>

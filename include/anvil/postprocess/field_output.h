@@ -1,0 +1,42 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <anvil/postprocess/interface.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace anvil
+{
+  /**
+   * What the field outputs (solution.pvd, contact.pvd) share: when to write
+   * (Output/Field interval) and the .pvd record of the files written so far,
+   * carried through checkpoints.
+   */
+  class FieldSchedule
+  {
+  public:
+    static void declare_parameters(dealii::ParameterHandler &prm);
+    void        parse_parameters(dealii::ParameterHandler &prm);
+
+    /// Every Field interval steps, and always at t = 0 and at the end.
+    template <int dim>
+    bool due(const SimulationState<dim> &s) const
+    {
+      return s.step == 0 || s.last_step || (interval > 0 && s.step % interval == 0);
+    }
+
+    /// Adds a record (replacing one at the same time: a final write after a
+    /// failure) and rewrites @p pvd on rank 0.
+    void record(double time, const std::string &file, const std::string &pvd, bool root);
+
+    void save(const std::string &key, std::map<std::string, std::string> &entries) const;
+    void load(const std::string &key, const std::map<std::string, std::string> &entries);
+
+  private:
+    unsigned int                                interval = 1;
+    std::vector<std::pair<double, std::string>> records;
+  };
+} // namespace anvil

@@ -1,0 +1,168 @@
+// ContactProblem, its parameters: contact pairs and rigid tools from the scene
+// (Contact/Pairs, Contact/Tools), checked against the mesh before any work.
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/numerics/rtree.h>
+
+#include <anvil/contact/contact_problem.h>
+#include <anvil/core/input_error.h>
+#include <anvil/core/instantiate.h>
+#include <anvil/core/scene.h>
+#include <anvil/geometry/geometry.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <numeric>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  template <int dim>
+  void ContactProblem<dim>::declare_parameters(ParameterHandler               &prm,
+                                               const std::vector<std::string> &pair_names,
+                                               const std::vector<std::string> &tool_names)
+  {
+    prm.enter_subsection("Contact");
+    prm.declare_entry("Maximum penetration", "0", Patterns::Double(0),
+                      "A converged step whose largest penetration exceeds this (mm) is cut back "
+                      "and reported; 0: half the shortest edge of the contact surfaces.");
+    for (const auto &name : pair_names)
+      {
+        prm.enter_subsection(name);
+        prm.declare_entry("Slave", "", Patterns::Anything(),
+                          "The boundary whose nodes are the slaves (a boundary name).");
+        prm.declare_entry("Master", "", Patterns::Anything(),
+                          "The boundary whose faces are the masters, or the name of a rigid tool "
+                          "in Contact/Tools.");
+        prm.declare_entry("Two-pass", "automatic", Patterns::Selection("automatic|true|false"),
+                          "true: both surfaces act as slave and master (the seed's two-pass "
+                          "approach), each pass with half the penalties; false: one pass, Slave "
+                          "nodes on Master faces; automatic: two passes between two boundaries, "
+                          "one against a tool.");
+        prm.declare_entry("Penalty normal", "0", Patterns::Double(0),
+                          "c_N of t_N = c_N <-g_N> (eq. 27): N/mm per node, or N/mm^3 per unit "
+                          "area (Penalty per = area). Must be > 0.");
+        prm.declare_entry("Penalty tangent", "0", Patterns::Double(0),
+                          "c_T of the elastic slip (eq. 28), same units as Penalty normal; "
+                          "0: frictionless.");
+        prm.declare_entry("Penalty per", "node", Patterns::Selection("node|area"),
+                          "node: the penalties are nodal stiffnesses (the seed's choice); area: "
+                          "per unit area, scaled by each slave node's tributary area at the start "
+                          "of the step (mesh independent).");
+        prm.declare_entry("Friction coefficient", "0", Patterns::Double(0),
+                          "Static Coulomb coefficient mu_s (eq. 29): sticking while "
+                          "|t_T| <= mu_s t_N.");
+        prm.declare_entry("Dynamic friction coefficient", "-1", Patterns::Double(-1),
+                          "mu_d <= mu_s, the force while sliding is mu_d t_N; -1: equal to the "
+                          "static one.");
+        prm.enter_subsection("Thermal");
+        prm.declare_entry("Conductance", "0", Patterns::Double(0),
+                          "h0 of h = h0 (p/H)^e (eq. 34), mW/(mm^2 K); 0: no heat exchange.");
+        prm.declare_entry("Hardness", "1000", Patterns::Double(0),
+                          "Vickers hardness H of eq. 34, MPa.");
+        prm.declare_entry("Exponent", "1", Patterns::Double(0), "e of eq. 34.");
+        prm.declare_entry("Relative effusivity", "0.5", Patterns::Double(0, 1),
+                          "Share of the frictional heat that goes to the slave side (eq. 31-33), "
+                          "0 to 1.");
+        prm.leave_subsection();
+        prm.leave_subsection();
+      }
+    for (const auto &name : tool_names)
+      {
+        prm.enter_subsection(name);
+        RigidTool<dim>::declare_parameters(prm);
+        prm.leave_subsection();
+      }
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  void ContactProblem<dim>::parse_parameters(ParameterHandler &prm, const Scene &scene,
+                                             const Geometry<dim> &geometry)
+  {
+    pairs.clear();
+    tools.clear();
+    prm.enter_subsection("Contact");
+    penetration_limit = prm.get_double("Maximum penetration");
+    for (const auto &name : scene.contact_tool_names())
+      {
+        prm.enter_subsection(name);
+        tools.push_back(std::make_unique<RigidTool<dim>>());
+        tools.back()->parse_parameters(prm, scene, "Contact/" + name);
+        tools.back()->name = name;
+        prm.leave_subsection();
+      }
+    for (const auto &name : scene.contact_pair_names())
+      {
+        const std::string path = "Contact/" + name + "/";
+        prm.enter_subsection(name);
+        Pair p;
+        p.name        = name;
+        p.slave_name  = trim(prm.get("Slave"));
+        p.master_name = trim(prm.get("Master"));
+        if (p.slave_name.empty())
+          scene.fail(path + "Slave", "is empty: expected the name of a boundary (" +
+                                       geometry.list_boundary_names() + ")");
+        if (geometry.boundary_names().count(p.slave_name) == 0)
+          scene.fail(path + "Slave", "= '" + p.slave_name + "' is not a boundary of the mesh (" +
+                                       geometry.list_boundary_names() + ")");
+        p.slave = geometry.boundary_id(p.slave_name, scene.where(path + "Slave"));
+        for (unsigned int k = 0; k < tools.size(); ++k)
+          if (tools[k]->name == p.master_name)
+            p.tool = k;
+        if (p.tool >= 0 && geometry.boundary_names().count(p.master_name))
+          scene.fail(path + "Master", "= '" + p.master_name +
+                                        "' names both a tool and a boundary: rename the tool");
+        if (p.tool < 0)
+          {
+            if (p.master_name.empty())
+              scene.fail(path + "Master", "is empty: expected a boundary (" +
+                                            geometry.list_boundary_names() +
+                                            ") or a tool of Contact/Tools");
+            if (geometry.boundary_names().count(p.master_name) == 0)
+              scene.fail(path + "Master",
+                         "= '" + p.master_name + "' is neither a boundary (" +
+                           geometry.list_boundary_names() + ") nor a tool of Contact/Tools");
+            p.master = geometry.boundary_id(p.master_name, scene.where(path + "Master"));
+            if (p.master == p.slave)
+              scene.fail(path + "Master", "is the Slave boundary: self-contact is not supported");
+          }
+        const std::string passes = prm.get("Two-pass");
+        p.two_pass = passes == "true" || (passes == "automatic" && p.tool < 0);
+        if (p.two_pass && p.tool >= 0)
+          scene.fail(path + "Two-pass", "is true but the Master is a rigid tool (a tool has no nodes)");
+        p.per_area                = prm.get("Penalty per") == "area";
+        p.law.penalty_normal      = prm.get_double("Penalty normal");
+        p.law.penalty_tangent     = prm.get_double("Penalty tangent");
+        p.law.mu_static           = prm.get_double("Friction coefficient");
+        const double mu_d         = prm.get_double("Dynamic friction coefficient");
+        p.law.mu_dynamic          = mu_d < 0 ? p.law.mu_static : mu_d;
+        if (!(p.law.penalty_normal > 0))
+          scene.fail(path + "Penalty normal", "must be > 0 (N/mm per node, N/mm^3 per area)");
+        if (p.law.mu_static > 0 && !(p.law.penalty_tangent > 0))
+          scene.fail(path + "Penalty tangent",
+                     "must be > 0 when there is friction (Friction coefficient > 0)");
+        if (p.law.mu_dynamic > p.law.mu_static)
+          scene.fail(path + "Dynamic friction coefficient",
+                     "must not exceed the static Friction coefficient");
+        prm.enter_subsection("Thermal");
+        p.conductance = prm.get_double("Conductance");
+        p.hardness    = prm.get_double("Hardness");
+        p.exponent    = prm.get_double("Exponent");
+        p.slave_share = prm.get_double("Relative effusivity");
+        prm.leave_subsection();
+        if (!(p.hardness > 0))
+          scene.fail(path + "Thermal/Hardness", "must be > 0 MPa");
+        prm.leave_subsection();
+        pairs.push_back(p);
+      }
+    prm.leave_subsection();
+    pair_totals.assign(pairs.size(), PairTotals());
+  }
+
+  ANVIL_INSTANTIATE_CLASS(ContactProblem)
+} // namespace anvil

@@ -1,0 +1,151 @@
+// ContactProblem, its history: per-pair totals of the accepted step, the
+// committed stick/slip state and tangential forces (reverted with a cut-back),
+// the slave nodes as output, and the state carried through checkpoints.
+#include <deal.II/base/bounding_box.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+#include <deal.II/numerics/rtree.h>
+
+#include <anvil/contact/contact_problem.h>
+#include <anvil/core/input_error.h>
+#include <anvil/core/instantiate.h>
+#include <anvil/core/scene.h>
+#include <anvil/geometry/geometry.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <numeric>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  template <int dim>
+  void ContactProblem<dim>::commit()
+  {
+    constexpr unsigned int w = dim + 5; // force (dim), t_N, |t_T|, work, active, sliding
+    std::vector<double> sums(pairs.size() * w, 0.), maxima(pairs.size(), 0.);
+    for (const auto &[key, trial] : trials)
+      {
+        const unsigned int p = std::get<0>(key);
+        committed[key]       = trial.state;
+        double *s            = &sums[p * w];
+        if (trial.normal_force > 0)
+          {
+            // The reverse pass of a two-pass pair acts on the Master body: its
+            // reaction is what the Slave body feels.
+            const double sign = std::get<1>(key) == 0 ? 1. : -1.;
+            for (unsigned int d = 0; d < dim; ++d)
+              s[d] += sign * trial.force_on_slave[d];
+            s[dim] += trial.normal_force;
+            s[dim + 1] += trial.tangential_force;
+            s[dim + 2] += trial.work;
+            s[dim + 3] += 1;
+            s[dim + 4] += trial.state.sliding ? 1 : 0;
+            maxima[p] = std::max(maxima[p], -trial.gap);
+          }
+      }
+    Utilities::MPI::sum(sums, mpi_communicator, sums);
+    Utilities::MPI::max(maxima, mpi_communicator, maxima);
+    for (unsigned int p = 0; p < pairs.size(); ++p)
+      {
+        const double *s = &sums[p * w];
+        auto         &t = pair_totals[p];
+        for (unsigned int d = 0; d < dim; ++d)
+          t.force[d] = s[d];
+        t.normal     = s[dim];
+        t.tangential = s[dim + 1];
+        t.friction_work += s[dim + 2];
+        t.active          = static_cast<unsigned int>(s[dim + 3] + 0.5);
+        t.sliding         = static_cast<unsigned int>(s[dim + 4] + 0.5);
+        t.max_penetration = maxima[p];
+      }
+  }
+
+  template <int dim>
+  std::vector<typename ContactProblem<dim>::NodeOutput> ContactProblem<dim>::node_outputs() const
+  {
+    std::vector<NodeOutput> out;
+    const double            dt = t_new - t_old;
+    for (const auto &[key, trial] : trials)
+      {
+        const Pair &pair = pairs[std::get<0>(key)];
+        NodeOutput  o;
+        o.pair     = std::get<0>(key);
+        o.position = trial.position;
+        if (trial.normal_force > 0 && trial.area > 0)
+          {
+            o.pressure    = trial.normal_force / ((pair.two_pass ? 0.5 : 1.) * trial.area);
+            o.conductance = pair.conductance > 0 ?
+                              pair.conductance * std::pow(o.pressure / pair.hardness, pair.exponent) :
+                              0.;
+          }
+        o.gap            = trial.gap;
+        o.slip           = trial.slip;
+        const auto q     = heat_flux.find({std::get<0>(key), std::get<2>(key)});
+        if (q != heat_flux.end() && trial.area > 0)
+          o.heat_flux = q->second / trial.area;
+        o.friction_power = dt > 0 ? trial.work / dt : 0.;
+        o.status         = trial.normal_force > 0 ? (trial.state.sliding ? 2 : 1) : 0;
+        out.push_back(o);
+      }
+    return out;
+  }
+
+  template <int dim>
+  void ContactProblem<dim>::save(std::ostream &out) const
+  {
+    // (pair, pass, node, in_contact, sliding, t_T) of every process.
+    std::vector<double> local;
+    for (const auto &[key, st] : committed)
+      if (node_mine[std::get<2>(key)])
+      {
+        local.insert(local.end(), {double(std::get<0>(key)), double(std::get<1>(key)),
+                                   double(std::get<2>(key)), st.in_contact ? 1. : 0., st.sliding ? 1. : 0.});
+        for (unsigned int d = 0; d < dim; ++d)
+          local.push_back(st.tangential_force[d]);
+      }
+    std::vector<double> all;
+    for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
+      all.insert(all.end(), part.begin(), part.end());
+    out << std::setprecision(17) << all.size();
+    for (const double x : all)
+      out << ' ' << x;
+    out << ' ' << pair_totals.size();
+    for (const auto &t : pair_totals)
+      out << ' ' << t.friction_work << ' ' << t.heat_exchanged << ' ' << t.friction_heat;
+    out << '\n';
+  }
+
+  template <int dim>
+  void ContactProblem<dim>::load(std::istream &in)
+  {
+    std::size_t n = 0;
+    in >> n;
+    std::vector<double> all(n);
+    for (double &x : all)
+      in >> x;
+    committed.clear();
+    for (std::size_t i = 0; i + 5 + dim <= all.size(); i += 5 + dim)
+      {
+        contact::NodeState<dim> st;
+        st.in_contact = all[i + 3] > 0.5;
+        st.sliding    = all[i + 4] > 0.5;
+        for (unsigned int d = 0; d < dim; ++d)
+          st.tangential_force[d] = all[i + 5 + d];
+        committed[Key(static_cast<unsigned int>(all[i]), static_cast<unsigned int>(all[i + 1]),
+                      static_cast<unsigned int>(all[i + 2]))] = st;
+      }
+    std::size_t n_pairs = 0;
+    in >> n_pairs;
+    AssertThrow(n_pairs == pair_totals.size(),
+                ExcMessage("the checkpoint has " + std::to_string(n_pairs) +
+                           " contact pairs, the scene " + std::to_string(pair_totals.size())));
+    for (auto &t : pair_totals)
+      in >> t.friction_work >> t.heat_exchanged >> t.friction_heat;
+  }
+
+  ANVIL_INSTANTIATE_CLASS(ContactProblem)
+} // namespace anvil

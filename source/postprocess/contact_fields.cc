@@ -1,0 +1,111 @@
+#include <deal.II/base/mpi.h>
+
+#include <anvil/postprocess/field_output.h>
+
+#include <fstream>
+#include <iomanip>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  /**
+   * contact.pvd and fields/contact_*.vtu: the slave nodes of every pair as a
+   * point cloud with contact pressure, gap, slip, status, frictional power,
+   * conductance, heat flux and pair index, written with the solution fields.
+   */
+  template <int dim>
+  class ContactFields : public Postprocessor<dim>
+  {
+  public:
+    bool applies(const SceneContents<dim> &c) const override { return !c.contact->empty(); }
+    void parse_parameters(ParameterHandler &prm, Scene &, const SceneContents<dim> &) override
+    {
+      schedule.parse_parameters(prm);
+    }
+    void accepted(const SimulationState<dim> &s, const StepReport<dim> *) override
+    {
+      if (schedule.due(s))
+        write(s);
+    }
+    void finish(const SimulationState<dim> &s, const bool failed) override
+    {
+      if (failed)
+        write(s);
+    }
+    void save(std::map<std::string, std::string> &entries) const override
+    {
+      schedule.save("contact.pvd", entries);
+    }
+    void load(const std::map<std::string, std::string> &entries) override
+    {
+      schedule.load("contact.pvd", entries);
+    }
+
+  private:
+    static constexpr unsigned int n_fields = 8;
+
+    void write(const SimulationState<dim> &s)
+    {
+      std::vector<double> local;
+      for (const auto &o : s.physics.contact_problem().node_outputs())
+        {
+          for (unsigned int d = 0; d < 3; ++d)
+            local.push_back(d < dim ? o.position[d] : 0.);
+          local.insert(local.end(), {o.pressure, o.gap, o.slip, double(o.status),
+                                     o.friction_power, o.conductance, o.heat_flux, double(o.pair)});
+        }
+      const auto parts = Utilities::MPI::all_gather(s.communicator, local);
+      const std::string name = "contact_" + Utilities::int_to_string(s.step, 5) + ".vtu";
+      if (s.is_root())
+        {
+          std::vector<double> all;
+          for (const auto &part : parts)
+            all.insert(all.end(), part.begin(), part.end());
+          write_vtu(s.output_directory + "/fields/" + name, all);
+        }
+      schedule.record(s.time, "fields/" + name, s.output_directory + "/contact.pvd", s.is_root());
+    }
+
+    static void write_vtu(const std::string &filename, const std::vector<double> &all)
+    {
+      const unsigned int width = 3 + n_fields, n = all.size() / width;
+      std::ofstream      vtu(filename);
+      vtu << std::setprecision(10)
+          << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"
+          << "<UnstructuredGrid><Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n
+          << "\">\n"
+          << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+      for (unsigned int i = 0; i < n; ++i)
+        vtu << all[i * width] << ' ' << all[i * width + 1] << ' ' << all[i * width + 2] << '\n';
+      vtu << "</DataArray></Points>\n<Cells>\n"
+          << "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+      for (unsigned int i = 0; i < n; ++i)
+        vtu << i << ' ';
+      vtu << "\n</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+      for (unsigned int i = 0; i < n; ++i)
+        vtu << i + 1 << ' ';
+      vtu << "\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+      for (unsigned int i = 0; i < n; ++i)
+        vtu << "1 "; // VTK_VERTEX
+      vtu << "\n</DataArray>\n</Cells>\n<PointData>\n";
+      const char *names[n_fields] = {"contact_pressure", "gap", "slip", "status",
+                                     "frictional_power", "conductance", "contact_heat_flux",
+                                     "pair"};
+      for (unsigned int f = 0; f < n_fields; ++f)
+        {
+          vtu << "<DataArray type=\"Float64\" Name=\"" << names[f] << "\" format=\"ascii\">\n";
+          for (unsigned int i = 0; i < n; ++i)
+            vtu << all[i * width + 3 + f] << ' ';
+          vtu << "\n</DataArray>\n";
+        }
+      vtu << "</PointData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+    }
+
+    FieldSchedule schedule;
+  };
+
+  ANVIL_REGISTER_POSTPROCESSOR(ContactFields, "contact fields",
+                               "contact.pvd: slave nodes with contact pressure (MPa), gap, slip "
+                               "(mm), status, frictional power (mW), conductance, heat flux.")
+} // namespace anvil

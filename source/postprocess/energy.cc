@@ -1,0 +1,85 @@
+#include <anvil/postprocess/interface.h>
+
+namespace anvil
+{
+  /**
+   * energy.csv and the energy and heat-balance sections of summary.json:
+   * the mechanical audit (external and internal work, kinetic, plastic and
+   * elastic energy, their balance) and the heat audit (content, its change,
+   * heat through boundaries, sources, plastic, thermoelastic and contact
+   * heat, and the balance error — computed from independent sums, so it is
+   * not zero by construction).
+   */
+  template <int dim>
+  class Energy : public Postprocessor<dim>
+  {
+  public:
+    void start(const SimulationState<dim> &s, const bool append) override
+    {
+      std::vector<std::string> columns = {"step", "time"};
+      if (s.physics.mechanics())
+        columns.insert(columns.end(), {"external_work", "internal_work", "kinetic_energy",
+                                       "plastic_work", "elastic_energy", "stress_work",
+                                       "balance_error"});
+      if (s.physics.heat())
+        columns.insert(columns.end(),
+                       {"heat_content", "heat_content_change", "boundary_heat_in", "source_heat",
+                        "plastic_heat", "thermoelastic_heat", "contact_heat",
+                        "heat_balance_error"});
+      csv.open(s.output_directory + "/energy.csv", columns, s.is_root(), append);
+    }
+
+    void accepted(const SimulationState<dim> &s, const StepReport<dim> *) override
+    {
+      std::vector<double> row = {double(s.step), s.time};
+      if (const auto *m = s.physics.mechanics())
+        {
+          const auto &e = m->energy();
+          row.insert(row.end(), {e.external_work, e.internal_work, e.kinetic, e.plastic_work,
+                                 e.elastic_energy, e.stress_work, e.balance_error()});
+        }
+      if (s.physics.heat())
+        {
+          const auto b = s.physics.heat_balance();
+          row.insert(row.end(), {b.content, b.change, b.boundary, b.source, b.plastic,
+                                 b.thermoelastic, b.contact, b.error});
+        }
+      csv.add_row(row);
+    }
+
+    void add_to_summary(const SimulationState<dim> &s, Summary &summary) const override
+    {
+      if (const auto *m = s.physics.mechanics())
+        {
+          const auto &e = m->energy();
+          summary.set("energy", "external_work", e.external_work);
+          summary.set("energy", "internal_work", e.internal_work);
+          summary.set("energy", "kinetic_energy", e.kinetic);
+          summary.set("energy", "initial_kinetic_energy", e.initial_kinetic);
+          summary.set("energy", "plastic_work", e.plastic_work);
+          summary.set("energy", "elastic_energy", e.elastic_energy);
+          summary.set("energy", "stress_work", e.stress_work);
+          summary.set("energy", "balance_error", e.balance_error());
+        }
+      if (s.physics.heat())
+        {
+          const auto b = s.physics.heat_balance();
+          summary.set("heat", "heat_content", b.content);
+          summary.set("heat", "heat_content_change", b.change);
+          summary.set("heat", "boundary_heat_in", b.boundary);
+          summary.set("heat", "source_heat", b.source);
+          summary.set("heat", "plastic_heat", b.plastic);
+          summary.set("heat", "thermoelastic_heat", b.thermoelastic);
+          summary.set("heat", "contact_heat", b.contact);
+          summary.set("heat", "balance_error", b.error);
+        }
+    }
+
+  private:
+    CsvHistory csv;
+  };
+
+  ANVIL_REGISTER_POSTPROCESSOR(Energy, "energy",
+                               "energy.csv: work, kinetic, plastic and elastic energy and their "
+                               "balance (N mm); with heat, the heat balance (mJ).")
+} // namespace anvil

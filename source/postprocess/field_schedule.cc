@@ -1,0 +1,59 @@
+#include <deal.II/base/data_out_base.h>
+
+#include <anvil/postprocess/field_output.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  void FieldSchedule::declare_parameters(ParameterHandler &prm)
+  {
+    prm.declare_entry("Field interval", "1", Patterns::Integer(0),
+                      "Write VTU fields every this many steps (0: only the first and last).");
+  }
+
+  void FieldSchedule::parse_parameters(ParameterHandler &prm)
+  {
+    interval = prm.get_integer({"Output"}, "Field interval");
+  }
+
+  void FieldSchedule::record(const double time, const std::string &file, const std::string &pvd,
+                             const bool root)
+  {
+    if (!records.empty() && records.back().first == time)
+      records.pop_back();
+    records.emplace_back(time, file);
+    if (root)
+      {
+        std::ofstream out(pvd);
+        DataOutBase::write_pvd_record(out, records);
+      }
+  }
+
+  void FieldSchedule::save(const std::string &key, std::map<std::string, std::string> &entries) const
+  {
+    std::ostringstream out;
+    out.precision(17);
+    out << records.size();
+    for (const auto &[time, name] : records)
+      out << ' ' << time << ' ' << name;
+    entries[key] = out.str();
+  }
+
+  void FieldSchedule::load(const std::string &key, const std::map<std::string, std::string> &entries)
+  {
+    const auto it = entries.find(key);
+    records.clear();
+    if (it == entries.end())
+      return;
+    std::istringstream in(it->second);
+    std::size_t        n = 0;
+    in >> n;
+    records.resize(n);
+    for (auto &[time, name] : records)
+      in >> time >> name;
+  }
+} // namespace anvil

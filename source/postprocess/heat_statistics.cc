@@ -1,0 +1,56 @@
+#include <anvil/postprocess/interface.h>
+
+namespace anvil
+{
+  /// thermal.csv: what the heat integration and the staggered iteration
+  /// cost each step (ARKode counters, wall time of each half).
+  template <int dim>
+  class HeatStatistics : public Postprocessor<dim>
+  {
+  public:
+    bool applies(const SceneContents<dim> &c) const override { return c.heat; }
+
+    void start(const SimulationState<dim> &s, const bool append) override
+    {
+      csv.open(s.output_directory + "/thermal.csv",
+               {"step", "time", "time_step", "arkode_steps", "arkode_attempts",
+                "error_test_failures", "nonlinear_iterations", "nonlinear_failures",
+                "linear_setups", "linear_solves", "linear_iterations", "mass_solves",
+                "rhs_evaluations", "last_internal_step", "staggered_iterations",
+                "staggered_change", "staggered_contraction", "mechanics_wall_time",
+                "thermal_wall_time"},
+               s.is_root(), append);
+    }
+    void initial(const SimulationState<dim> &) override {}
+
+    void accepted(const SimulationState<dim> &s, const StepReport<dim> *r) override
+    {
+      const auto &a = r->thermal;
+      csv.add_row({double(s.step), s.time, r->time_step, double(a.internal_steps),
+                   double(a.attempted_steps), double(a.error_test_failures),
+                   double(a.nonlinear_iterations), double(a.nonlinear_failures),
+                   double(a.linear_setups), double(a.linear_solves), double(a.linear_iterations),
+                   double(a.mass_solves), double(a.rhs_evaluations), a.last_internal_step,
+                   double(r->staggered_iterations), r->staggered_change, r->contraction,
+                   r->mechanical_wall, r->thermal_wall});
+    }
+
+    void add_to_summary(const SimulationState<dim> &s, Summary &summary) const override
+    {
+      const auto &n = s.statistics;
+      summary.set("heat", "arkode_internal_steps", double(n.heat_internal_steps));
+      summary.set("heat", "arkode_steps_per_step",
+                  n.steps ? double(n.heat_internal_steps) / n.steps : 0.);
+      summary.set("heat", "arkode_nonlinear_iterations", double(n.heat_nonlinear_iterations));
+      summary.set("heat", "staggered_iterations", double(n.staggered_iterations));
+    }
+
+  private:
+    CsvHistory csv;
+  };
+
+  ANVIL_REGISTER_POSTPROCESSOR(HeatStatistics, "heat statistics",
+                               "thermal.csv: ARKode steps, failures, nonlinear and linear "
+                               "iterations, staggered iterations and wall time of each half, "
+                               "per step.")
+} // namespace anvil

@@ -1,0 +1,301 @@
+#include <deal.II/base/mpi.h>
+
+#include <anvil/core/scene.h>
+#include <anvil/postprocess/interface.h>
+#include <anvil/postprocess/probe_points.h>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  namespace
+  {
+    // "f(a, b)" -> ("f", {"a", "b"}); empty name if malformed.
+    std::pair<std::string, std::vector<std::string>> parse_call(const std::string &text)
+    {
+      const auto open  = text.find('(');
+      const auto close = text.rfind(')');
+      if (open == std::string::npos || close == std::string::npos || close < open)
+        return {"", {}};
+      return {trim(text.substr(0, open)),
+              split_outside_parentheses(text.substr(open + 1, close - open - 1), ',')};
+    }
+
+    // An optional constant after the call: "mean(temperature, upper) - 300".
+    double parse_offset(const std::string &item, const std::string &expr, const Scene &scene,
+                        const std::string &path)
+    {
+      const auto        close = expr.rfind(')');
+      const std::string tail  = close == std::string::npos ? "" : trim(expr.substr(close + 1));
+      if (tail.empty())
+        return 0;
+      double c = 0;
+      try
+        {
+          std::size_t used = 0;
+          if (tail[0] != '+' && tail[0] != '-')
+            throw std::invalid_argument("");
+          c = std::stod(trim(tail.substr(1)), &used);
+          if (used != trim(tail.substr(1)).size())
+            throw std::invalid_argument("");
+        }
+      catch (...)
+        {
+          scene.fail(path, "item '" + item + "': after the call only '+ number' or "
+                                             "'- number' may follow, not '" + tail + "'");
+        }
+      return tail[0] == '-' ? -c : c;
+    }
+  } // namespace
+
+  /**
+   * The scene's named results (Output/Quantities of interest), evaluated at
+   * the end of the run into summary.json: what tests, studies and plots read.
+   */
+  template <int dim>
+  class Quantities : public Postprocessor<dim>
+  {
+  public:
+    static void declare_parameters(ParameterHandler &prm)
+    {
+      prm.declare_entry(
+        "Quantities of interest", "", Patterns::Anything(),
+        "Named results written to summary.json at the end: 'name: expr; ...' with "
+        "expr one of reaction(boundary, x|y|z) [N], probe(name, ux|uy|uz|<field>), "
+        "max(<field>), min(<field>), mean(<field>[, body]), contact(pair, "
+        "x|y|z|normal|tangential|friction_work|active_nodes|sliding_nodes|"
+        "max_penetration) [N, N mm, mm], optionally followed by '+ c' or '- c' "
+        "(e.g. 'dT: mean(temperature, upper) - 300'); <field> is a cell field: "
+        "stress_xx..stress_zz, von_mises, pressure [MPa], J, "
+        "equivalent_plastic_strain, temperature [K] (heat scenes).");
+    }
+
+    void parse_parameters(ParameterHandler &prm, Scene &scene, const SceneContents<dim> &c) override;
+    bool applies(const SceneContents<dim> &) const override { return !quantities.empty(); }
+    void finish(const SimulationState<dim> &s, bool failed) override;
+    void add_to_summary(const SimulationState<dim> &, Summary &summary) const override
+    {
+      for (const auto &[name, value] : values)
+        summary.set("quantities_of_interest", name, value);
+    }
+    std::vector<std::pair<std::string, double>> results() const override { return values; }
+
+  private:
+    struct Quantity
+    {
+      std::string                name, kind, target, field;
+      types::boundary_id         boundary  = 0;
+      int                        body      = -1;
+      unsigned int               component = 0;
+      double                     offset    = 0; // "f(...) + c"
+    };
+    Quantity parse_one(const std::string &item, const Scene &scene, const SceneContents<dim> &c,
+                       const std::vector<std::string> &fields) const;
+    double   evaluate(const Quantity &q, const SimulationState<dim> &s,
+                      const typename MechanicalProblem<dim>::CellFields &fields) const;
+
+    std::vector<ProbePoint<dim>>                probes;
+    std::vector<Quantity>                       quantities;
+    std::vector<std::pair<std::string, double>> values;
+  };
+
+  template <int dim>
+  void Quantities<dim>::parse_parameters(ParameterHandler &prm, Scene &scene,
+                                         const SceneContents<dim> &c)
+  {
+    probes = parse_probe_points<dim>(prm.get({"Output"}, "Probes"), scene);
+    std::vector<std::string> fields;
+    if (c.mechanics)
+      fields = {"stress_xx", "stress_xy", "stress_xz", "stress_yy", "stress_yz",
+                "stress_zz", "von_mises", "pressure",  "J",         "equivalent_plastic_strain"};
+    if (c.temperature)
+      fields.push_back("temperature");
+    for (const auto &item :
+         split_outside_parentheses(prm.get({"Output"}, "Quantities of interest"), ';'))
+      if (!item.empty())
+        quantities.push_back(parse_one(item, scene, c, fields));
+  }
+
+  template <int dim>
+  typename Quantities<dim>::Quantity
+  Quantities<dim>::parse_one(const std::string &item, const Scene &scene,
+                             const SceneContents<dim> &c, const std::vector<std::string> &fields) const
+  {
+    const std::string qpath = "Output/Quantities of interest";
+    auto              is_field = [&](const std::string &f) {
+      return std::find(fields.begin(), fields.end(), f) != fields.end();
+    };
+    std::string known_fields;
+    for (const auto &f : fields)
+      known_fields += (known_fields.empty() ? "" : ", ") + f;
+    const auto colon = item.find(':');
+    if (colon == std::string::npos)
+      scene.fail(qpath, "item '" + item + "': expected 'name: expression'");
+    Quantity q;
+    q.name               = trim(item.substr(0, colon));
+    const auto [f, args] = parse_call(item.substr(colon + 1));
+    q.offset             = parse_offset(item, item.substr(colon + 1), scene, qpath);
+    q.kind               = f;
+    auto component_of    = [&](const std::string &comp) -> unsigned int {
+      for (unsigned int d = 0; d < dim; ++d)
+        if (comp == std::string(1, "xyz"[d]))
+          return d;
+      scene.fail(qpath, "item '" + item + "': component '" + comp + "' should be x, y" +
+                          (dim == 3 ? " or z" : ""));
+    };
+    if (f == "reaction" && args.size() == 2 && !c.mechanics)
+      scene.fail(qpath, "item '" + item + "': a reaction needs the mechanics, and "
+                                          "Physics/Coupling is 'thermal only'");
+    if (f == "reaction" && args.size() == 2)
+      {
+        q.target    = args[0];
+        q.boundary  = c.geometry->boundary_id(args[0], scene.where(qpath));
+        q.component = component_of(args[1]);
+      }
+    else if (f == "probe" && args.size() == 2)
+      {
+        q.target = args[0];
+        q.field  = args[1];
+        if (std::none_of(probes.begin(), probes.end(),
+                         [&](const ProbePoint<dim> &p) { return p.name == args[0]; }))
+          scene.fail(qpath, "item '" + item + "': no probe named '" + args[0] +
+                              "' in Output/Probes");
+        if (!is_field(q.field) && !(c.mechanics && q.field.size() == 2 && q.field[0] == 'u'))
+          scene.fail(qpath, "item '" + item + "': unknown field '" + q.field +
+                              "' for this scene (expected " +
+                              (c.mechanics ? std::string(dim == 3 ? "ux, uy, uz, " : "ux, uy, ") :
+                                             "") +
+                              "one of: " + known_fields + ")");
+        if (q.field == "temperature" && !c.heat)
+          scene.fail(qpath, "item '" + item + "': a probe's temperature needs the heat equation "
+                                              "(use mean(temperature) for a prescribed one)");
+        if (q.field[0] == 'u' && q.field.size() == 2)
+          q.component = component_of(q.field.substr(1));
+      }
+    else if (f == "contact" && args.size() == 2)
+      {
+        q.target          = args[0];
+        q.field           = args[1];
+        const auto &pairs = c.contact->get_pairs();
+        if (std::none_of(pairs.begin(), pairs.end(), [&](const auto &p) { return p.name == args[0]; }))
+          scene.fail(qpath, "item '" + item + "': no contact pair named '" + args[0] +
+                              "' in Contact/Pairs");
+        const std::vector<std::string> known = {"x", "y", "z", "normal", "tangential",
+                                                "friction_work", "active_nodes",
+                                                "sliding_nodes", "max_penetration"};
+        if (std::find(known.begin(), known.end(), args[1]) == known.end() ||
+            (args[1] == "z" && dim == 2))
+          scene.fail(qpath, "item '" + item + "': expected contact(pair, x|y" +
+                              (dim == 3 ? "|z" : "") +
+                              "|normal|tangential|friction_work|active_nodes|sliding_nodes|"
+                              "max_penetration)");
+      }
+    else if ((f == "max" || f == "min") && args.size() == 1 && is_field(args[0]))
+      q.field = args[0];
+    else if (f == "mean" && (args.size() == 1 || args.size() == 2) && is_field(args[0]))
+      {
+        q.field = args[0];
+        if (args.size() == 2)
+          q.body = c.geometry->body_id(args[1], scene.where(qpath));
+      }
+    else
+      scene.fail(qpath, "item '" + item + "': expected reaction(boundary, x), "
+                          "probe(name, field), max(field), min(field) or mean(field[, body]) "
+                          "with a field of this scene (" + known_fields + ")");
+    return q;
+  }
+
+  template <int dim>
+  void Quantities<dim>::finish(const SimulationState<dim> &s, const bool failed)
+  {
+    // After a failure the state is the last converged one, not the scene's end:
+    // its quantities would be mistaken for results.
+    values.clear();
+    if (failed)
+      return;
+    typename MechanicalProblem<dim>::CellFields fields;
+    if (s.physics.mechanics())
+      fields = s.physics.mechanics()->cell_fields();
+    if (s.physics.has_temperature())
+      {
+        fields.names.push_back("temperature");
+        fields.values.push_back(s.physics.cell_temperature());
+      }
+    for (const auto &q : quantities)
+      values.emplace_back(q.name, evaluate(q, s, fields) + q.offset);
+  }
+
+  template <int dim>
+  double Quantities<dim>::evaluate(const Quantity &q, const SimulationState<dim> &s,
+                                   const typename MechanicalProblem<dim>::CellFields &fields) const
+  {
+    const auto *mechanical = s.physics.mechanics();
+    if (q.kind == "reaction")
+      return mechanical->reaction(q.boundary)[q.component];
+    if (q.kind == "contact")
+      {
+        const auto &contact = s.physics.contact_problem();
+        const auto &pairs   = contact.get_pairs();
+        const auto  k = std::find_if(pairs.begin(), pairs.end(),
+                                    [&](const auto &p) { return p.name == q.target; }) -
+                       pairs.begin();
+        const auto &c = contact.totals()[k];
+        if (q.field.size() == 1)
+          return c.force[q.field[0] - 'x'];
+        if (q.field == "normal")
+          return c.normal;
+        if (q.field == "tangential")
+          return c.tangential;
+        if (q.field == "friction_work")
+          return c.friction_work;
+        if (q.field == "active_nodes")
+          return c.active;
+        if (q.field == "sliding_nodes")
+          return c.sliding;
+        return c.max_penetration;
+      }
+    if (q.kind == "probe")
+      {
+        const auto &p = *std::find_if(probes.begin(), probes.end(),
+                                      [&](const ProbePoint<dim> &p) { return p.name == q.target; });
+        Tensor<1, dim>        u;
+        SymmetricTensor<2, 3> t;
+        double                eqps = 0;
+        if (mechanical)
+          mechanical->probe(p.point, u, t, eqps);
+        if (q.field == "temperature")
+          return s.physics.heat()->temperature_at(p.point);
+        if (q.field[0] == 'u' && q.field.size() == 2)
+          return u[q.component];
+        if (q.field == "equivalent_plastic_strain")
+          return eqps;
+        // The probe's cell average; evaluated from the stress tensor.
+        const auto dev = deviator(t);
+        if (q.field == "von_mises")
+          return std::sqrt(1.5 * (dev * dev));
+        if (q.field == "pressure")
+          return -trace(t) / 3;
+        return t[q.field[7] - 'x'][q.field[8] - 'x'];
+      }
+    const auto &v = fields.values[std::find(fields.names.begin(), fields.names.end(), q.field) -
+                                  fields.names.begin()];
+    double      sum = 0, volume = 0, extreme = q.kind == "max" ? -1e300 : 1e300;
+    for (const auto &cell : s.triangulation.active_cell_iterators())
+      if (cell->is_locally_owned() && (q.body < 0 || cell->material_id() == types::material_id(q.body)))
+        {
+          const double x = v[cell->active_cell_index()];
+          sum += x * cell->measure();
+          volume += cell->measure();
+          extreme = q.kind == "max" ? std::max(extreme, x) : std::min(extreme, x);
+        }
+    if (q.kind == "mean")
+      return Utilities::MPI::sum(sum, s.communicator) / Utilities::MPI::sum(volume, s.communicator);
+    if (q.kind == "max")
+      return Utilities::MPI::max(extreme, s.communicator);
+    return Utilities::MPI::min(extreme, s.communicator);
+  }
+
+  ANVIL_REGISTER_POSTPROCESSOR(Quantities, "quantities of interest",
+                               "summary.json: the scene's named results (Output/Quantities of "
+                               "interest), evaluated at the end of the run.")
+} // namespace anvil

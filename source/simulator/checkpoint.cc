@@ -1,0 +1,222 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
+#include <anvil/core/input_error.h>
+#include <anvil/core/named_values.h>
+#include <anvil/simulator/simulator.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  namespace
+  {
+    // state.txt: a header line with the format version, then one named entry
+    // per line ("key value..."), then the contact state after a "contact" line.
+    // A new entry is a new key: restarts read by name, never by position.
+    constexpr int checkpoint_format = 2;
+    const char   *checkpoint_magic  = "anvil-checkpoint";
+
+    std::string joined(const std::vector<std::string> &names)
+    {
+      std::string s;
+      for (const auto &n : names)
+        s += (s.empty() ? "" : ",") + n;
+      return s;
+    }
+
+    struct StateFile
+    {
+      int                                format = 0;
+      std::map<std::string, std::string> entries;
+      std::string                        contact;
+
+      explicit StateFile(const std::string &filename)
+      {
+        std::ifstream in(filename);
+        std::string   magic;
+        in >> magic >> format;
+        if (magic != checkpoint_magic)
+          format = 0;
+        std::string line;
+        std::getline(in, line);
+        while (std::getline(in, line))
+          {
+            if (line == "contact")
+              {
+                std::getline(in, contact);
+                break;
+              }
+            const auto space = line.find(' ');
+            if (space != std::string::npos)
+              entries[line.substr(0, space)] = line.substr(space + 1);
+          }
+      }
+      std::string text(const std::string &key) const
+      {
+        const auto it = entries.find(key);
+        if (it == entries.end())
+          throw InputError("the checkpoint has no entry '" + key + "' (damaged?)");
+        return it->second;
+      }
+      double number(const std::string &key) const { return std::stod(text(key)); }
+      NamedValues group(const std::string &prefix) const
+      {
+        NamedValues v;
+        for (const auto &[key, value] : entries)
+          if (key.rfind(prefix + ".", 0) == 0)
+            v[key.substr(prefix.size() + 1)] = std::stod(value);
+        return v;
+      }
+    };
+  } // namespace
+
+  template <int dim>
+  void Simulator<dim>::check_checkpoint() const
+  {
+    const std::string path = "Output/Restart from";
+    const std::string file = restart_directory + "/state.txt";
+    if (!std::filesystem::exists(file))
+      scene.fail(path, "= '" + restart_directory + "' is not a checkpoint directory (no state.txt in it)");
+    const StateFile state(file);
+    if (state.format != checkpoint_format)
+      scene.fail(path, "= '" + restart_directory + "' was written in checkpoint format " +
+                         std::to_string(state.format) + "; this anvil reads format " +
+                         std::to_string(checkpoint_format) + " (rerun the scene from t = 0)");
+    auto refuse_if = [&](const std::string &key, const std::string &what, const std::string &here) {
+      const auto it = state.entries.find(key);
+      const std::string there = it == state.entries.end() ? "(none)" : it->second;
+      if (there != here)
+        scene.fail(path, "= '" + restart_directory + "' was written by a scene with " + what +
+                           " = '" + there + "', this scene has '" + here + "'");
+    };
+    refuse_if("dimension", "Dimension", std::to_string(dim));
+    refuse_if("coupling", "Physics/Coupling", coupling);
+    refuse_if("bodies", "Bodies/Names", joined(scene.body_names()));
+    refuse_if("contact_pairs", "Contact/Pairs", joined(scene.contact_pair_names()));
+  }
+
+  template <int dim>
+  void Simulator<dim>::write_checkpoint(const double t, const double dt)
+  {
+    TimerOutput::Scope s(*timer, "Checkpoint");
+    const std::string  dir = output_dir + "/checkpoint";
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      std::filesystem::create_directories(dir);
+    MPI_Barrier(mpi_communicator);
+    // Attachments are read back in this order: mechanics (vectors, points), heat.
+    if (physics.mechanics())
+      physics.mechanics()->prepare_checkpoint();
+    if (physics.heat())
+      physics.heat()->prepare_checkpoint();
+    triangulation.save(dir + "/mesh");
+    std::ostringstream contact_state; // collective
+    if (!physics.contact_problem().empty())
+      physics.contact_problem().save(contact_state);
+    std::map<std::string, std::string> output_state;
+    for (const auto &o : outputs)
+      o->save(output_state);
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+
+    std::ofstream out(dir + "/state.txt");
+    out << std::setprecision(17) << checkpoint_magic << ' ' << checkpoint_format << '\n';
+    auto entry = [&](const std::string &key, const auto &value) {
+      out << key << ' ' << value << '\n';
+    };
+    entry("scene", scene.filename());
+    entry("dimension", dim);
+    entry("coupling", coupling);
+    entry("bodies", joined(scene.body_names()));
+    entry("contact_pairs", joined(scene.contact_pair_names()));
+    entry("time", t);
+    entry("time_step", dt);
+    entry("steps", statistics.steps);
+    entry("cut_backs", statistics.cut_backs);
+    entry("newton_iterations", statistics.newton_iterations);
+    entry("linear_iterations", statistics.linear_iterations);
+    entry("heat_internal_steps", statistics.heat_internal_steps);
+    entry("heat_nonlinear_iterations", statistics.heat_nonlinear_iterations);
+    entry("staggered_iterations", statistics.staggered_iterations);
+    if (physics.mechanics())
+      for (const auto &[key, value] : physics.mechanics()->checkpoint_scalars())
+        entry("mechanics." + key, value);
+    if (auto *heat = physics.heat())
+      {
+        for (const auto &[key, value] : heat->checkpoint_scalars())
+          entry("heat." + key, value);
+        const auto &a = physics.heat_audit();
+        entry("heat_audit.initial_content", physics.initial_heat_content());
+        entry("heat_audit.plastic", a.plastic);
+        entry("heat_audit.thermoelastic", a.thermoelastic);
+        entry("heat_audit.contact", a.contact);
+      }
+    for (const auto &[key, value] : output_state)
+      entry("output." + key, value);
+    if (!physics.contact_problem().empty())
+      out << "contact\n" << contact_state.str();
+  }
+
+  template <int dim>
+  void Simulator<dim>::read_checkpoint(double &t, double &dt)
+  {
+    if (physics.mechanics())
+      physics.mechanics()->load_checkpoint();
+    if (physics.heat())
+      physics.heat()->load_checkpoint();
+    const StateFile state(restart_directory + "/state.txt");
+    try
+      {
+        t                                    = state.number("time");
+        dt                                   = state.number("time_step");
+        statistics.steps                     = state.number("steps");
+        statistics.cut_backs                 = state.number("cut_backs");
+        statistics.newton_iterations         = state.number("newton_iterations");
+        statistics.linear_iterations         = state.number("linear_iterations");
+        statistics.heat_internal_steps       = state.number("heat_internal_steps");
+        statistics.heat_nonlinear_iterations = state.number("heat_nonlinear_iterations");
+        statistics.staggered_iterations      = state.number("staggered_iterations");
+        if (physics.mechanics())
+          physics.mechanics()->restore_scalars(state.group("mechanics"));
+        if (physics.heat())
+          {
+            physics.heat()->restore_scalars(state.group("heat"));
+            const auto audit                = state.group("heat_audit");
+            physics.initial_heat_content()  = named_value(audit, "initial_content");
+            physics.heat_audit().plastic       = named_value(audit, "plastic");
+            physics.heat_audit().thermoelastic = named_value(audit, "thermoelastic");
+            physics.heat_audit().contact       = named_value(audit, "contact");
+          }
+        std::map<std::string, std::string> output_state;
+        for (const auto &[key, value] : state.entries)
+          if (key.rfind("output.", 0) == 0)
+            output_state[key.substr(7)] = value;
+        for (auto &o : outputs)
+          o->load(output_state);
+        if (!physics.contact_problem().empty())
+          {
+            std::istringstream in(state.contact);
+            physics.contact_problem().load(in);
+            if (!in)
+              throw InputError("cannot read the contact state");
+          }
+      }
+    catch (const InputError &e)
+      {
+        throw InputError(restart_directory + "/state.txt: " + e.what());
+      }
+    current_time = t;
+  }
+
+#define INSTANTIATE(dim)                                                                           \
+  template void Simulator<dim>::check_checkpoint() const;                                        \
+  template void Simulator<dim>::write_checkpoint(double, double);                                \
+  template void Simulator<dim>::read_checkpoint(double &, double &);
+  ANVIL_INSTANTIATE(INSTANTIATE)
+#undef INSTANTIATE
+} // namespace anvil

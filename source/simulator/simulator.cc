@@ -1,0 +1,323 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
+
+#include <anvil/core/input_error.h>
+#include <anvil/core/instantiate.h>
+#include <anvil/simulator/simulator.h>
+
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  template <int dim>
+  void Simulator<dim>::declare_parameters(ParameterHandler               &prm,
+                                          const std::vector<std::string> &body_names,
+                                          const std::vector<std::string> &contact_pair_names,
+                                          const std::vector<std::string> &contact_tool_names)
+  {
+    Scene::declare_shape_parameters(prm);
+    declare_coupling_parameters<dim>(prm);
+    CoupledProblem<dim>::declare_parameters(prm, body_names, contact_pair_names,
+                                            contact_tool_names);
+    Geometry<dim>::declare_parameters(prm);
+
+    prm.enter_subsection("Time");
+    prm.declare_entry("End time", "1", Patterns::Double(0), "End of the simulated interval, s.");
+    prm.declare_entry("Time step", "0.1", Patterns::Double(0), "First time step, s.");
+    prm.declare_entry("Minimum time step", "0", Patterns::Double(0),
+                      "Smallest step the cut-back may reach, s; 0 means Time step / 1024.");
+    prm.declare_entry("Maximum time step", "0", Patterns::Double(0),
+                      "Largest step the re-growth may reach, s; 0 means Time step.");
+    prm.declare_entry("Growth factor", "1.5", Patterns::Double(1),
+                      "Factor by which the step grows after an easy step (dimensionless).");
+    prm.declare_entry("Easy step iterations", "5", Patterns::Integer(0),
+                      "A step that converged in at most this many Newton iterations is easy.");
+    prm.leave_subsection();
+
+    prm.enter_subsection("Output");
+    prm.declare_entry("Directory", "", Patterns::Anything(),
+                      "Where fields, histories and summary.json go; empty means "
+                      "output/<scene name> in the working directory.");
+    prm.declare_entry("Checkpoint interval", "0", Patterns::Integer(0),
+                      "Write a checkpoint (output/<dir>/checkpoint) every this many steps; one is "
+                      "always written at the end and when a run stops on a failure.");
+    prm.declare_entry("Restart from", "", Patterns::Anything(),
+                      "A checkpoint directory to resume from (its time, state and histories); "
+                      "empty: start at t = 0. The scene must be the one that wrote it (the "
+                      "number of processes may differ).");
+    prm.declare_entry("Verbosity", "normal", Patterns::Selection("normal|quiet"),
+                      "normal: one line per step and a timing table; quiet: errors only.");
+    prm.leave_subsection();
+    declare_postprocessor_parameters<dim>(prm);
+  }
+
+  template <int dim>
+  Simulator<dim>::Simulator(Scene &scene, MPI_Comm communicator)
+    : scene(scene)
+    , mpi_communicator(communicator)
+    , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
+    , triangulation(communicator)
+  {
+    auto &prm = scene.parameters();
+    geometry.parse_parameters(prm, scene);
+    // Bodies: every mesh body needs a material, every listed body must exist.
+    for (const auto &[name, id] : geometry.body_names())
+      if (std::find(scene.body_names().begin(), scene.body_names().end(), name) ==
+          scene.body_names().end())
+        scene.fail("Bodies/Names", "does not list the mesh body '" + name +
+                                     "' (the mesh has: " + geometry.list_body_names() + ")");
+
+    coupling = prm.get({"Physics"}, "Coupling");
+    scheme   = CouplingSchemeRegistry<dim>::instance().create(coupling);
+    scheme->parse_parameters(prm, scene);
+    physics.parse_parameters(prm, scene, geometry, scheme->needs_mechanics(),
+                             scheme->needs_heat_equation(), coupling);
+    contents.mechanics   = scheme->needs_mechanics();
+    contents.heat        = scheme->needs_heat_equation();
+    contents.temperature = scheme->provides_temperature();
+    contents.geometry    = &geometry;
+    contents.contact     = &physics.contact_problem();
+    parse_time(prm);
+    parse_output(prm);
+  }
+
+  template <int dim>
+  Simulator<dim>::~Simulator() = default;
+
+  template <int dim>
+  void Simulator<dim>::parse_time(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Time");
+    time.end_time          = prm.get_double("End time");
+    time.time_step         = prm.get_double("Time step");
+    time.minimum_time_step = prm.get_double("Minimum time step");
+    time.maximum_time_step = prm.get_double("Maximum time step");
+    time.growth_factor     = prm.get_double("Growth factor");
+    time.easy_iterations   = prm.get_integer("Easy step iterations");
+    prm.leave_subsection();
+    if (!(time.time_step > 0))
+      scene.fail("Time/Time step", "must be > 0 s");
+    if (time.minimum_time_step == 0)
+      time.minimum_time_step = time.time_step / 1024;
+    if (time.maximum_time_step == 0)
+      time.maximum_time_step = time.time_step;
+    if (time.minimum_time_step > time.time_step)
+      scene.fail("Time/Minimum time step", "must not exceed Time step");
+  }
+
+  template <int dim>
+  void Simulator<dim>::parse_output(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Output");
+    output_dir          = prm.get("Directory");
+    checkpoint_interval = prm.get_integer("Checkpoint interval");
+    restart_directory   = trim(prm.get("Restart from"));
+    quiet               = prm.get("Verbosity") == "quiet";
+    prm.leave_subsection();
+    if (output_dir.empty())
+      output_dir = "output/" +
+                   std::filesystem::path(scene.filename().empty() ? "anvil" : scene.filename())
+                     .stem()
+                     .string();
+    if (!restart_directory.empty())
+      check_checkpoint();
+    for (const auto &entry : PostprocessorRegistry<dim>::instance().all())
+      {
+        auto output = entry.create();
+        output->parse_parameters(prm, scene, contents);
+        if (output->applies(contents))
+          outputs.push_back(std::move(output));
+      }
+  }
+
+  template <int dim>
+  void Simulator<dim>::setup()
+  {
+    TimerOutput::Scope t(*timer, "Mesh");
+    if (restart_directory.empty())
+      geometry.create(triangulation);
+    else
+      {
+        geometry.create_coarse(triangulation);
+        triangulation.load(restart_directory + "/mesh");
+        geometry.finish_loaded(triangulation);
+      }
+  }
+
+  template <int dim>
+  SimulationState<dim> Simulator<dim>::state(const double t, const unsigned int step,
+                                             const bool last) const
+  {
+    SimulationState<dim> s{scene,    mpi_communicator, triangulation, geometry, physics,
+                           coupling, output_dir,       statistics,    *timer};
+    s.time      = t;
+    s.step      = step;
+    s.last_step = last;
+    return s;
+  }
+
+  template <int dim>
+  bool Simulator<dim>::run()
+  {
+    wall_start = MPI_Wtime();
+    timer = std::make_unique<TimerOutput>(mpi_communicator, pcout, TimerOutput::never,
+                                          TimerOutput::wall_times);
+    setup();
+    physics.setup(triangulation, *timer, quiet);
+    scheme->initialize(physics);
+    double t  = 0;
+    double dt = time.time_step;
+    if (!restart_directory.empty())
+      {
+        read_checkpoint(t, dt);
+        physics.restarted();
+      }
+    double last_accepted_step = dt;
+
+    if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      std::filesystem::create_directories(output_dir + "/fields");
+    MPI_Barrier(mpi_communicator);
+    print_start();
+    for (auto &o : outputs)
+      o->start(state(t, statistics.steps), !restart_directory.empty());
+    if (restart_directory.empty())
+      {
+        TimerOutput::Scope s(*timer, "Output");
+        for (auto &o : outputs)
+          o->initial(state(0, 0));
+      }
+    const double eps = 1e-12 * time.end_time;
+    while (t < time.end_time - eps)
+      {
+        const double step = std::min(dt, time.end_time - t);
+        auto         r    = scheme->advance(t, t + step);
+        r.time_step       = step;
+        statistics.newton_iterations += r.mechanics_iterations();
+        statistics.linear_iterations += r.linear_iterations();
+        statistics.heat_internal_steps += r.thermal.internal_steps;
+        statistics.heat_nonlinear_iterations += r.thermal.nonlinear_iterations;
+        statistics.staggered_iterations += r.staggered_iterations;
+        for (auto &o : outputs)
+          o->attempt(state(t + step, statistics.steps), r);
+        if (!r.converged)
+          {
+            ++statistics.cut_backs;
+            dt = step / 2;
+            if (!quiet)
+              pcout << "  step at t = " << t + step << " s failed: " << r.failure
+                    << "; cutting back to dt = " << dt << " s" << std::endl;
+            if (dt < time.minimum_time_step * (1 - 1e-12))
+              {
+                stop("failed at t = " + Utilities::to_string(t + step) + " s: " + r.failure +
+                       "; minimum time step " + Utilities::to_string(time.minimum_time_step) +
+                       " s reached",
+                     t, last_accepted_step);
+                return false;
+              }
+            continue;
+          }
+
+        scheme->commit(t, t + step);
+        last_accepted_step = step;
+        t                  = t + step;
+        current_time       = t;
+        ++statistics.steps;
+        const bool last = t >= time.end_time - eps;
+        output_step(&r, t, last);
+        if (last || (checkpoint_interval > 0 && statistics.steps % checkpoint_interval == 0))
+          write_checkpoint(t, dt);
+        if (!quiet)
+          print_step(r, t, step);
+        dt = scheme->easy(r, time.easy_iterations) ?
+               std::min(step * time.growth_factor, time.maximum_time_step) :
+               step;
+      }
+
+    for (auto &o : outputs)
+      o->finish(state(t, statistics.steps, true), false);
+    write_summary("completed");
+    if (!quiet)
+      {
+        timer->print_summary();
+        for (const auto &[name, value] : quantities_of_interest())
+          pcout << "  " << name << " = " << std::setprecision(10) << value << std::endl;
+      }
+    return true;
+  }
+
+  template <int dim>
+  void Simulator<dim>::output_step(const StepReport<dim> *r, const double t, const bool last)
+  {
+    TimerOutput::Scope s(*timer, "Output");
+    for (auto &o : outputs)
+      o->accepted(state(t, statistics.steps, last), r);
+  }
+
+  template <int dim>
+  void Simulator<dim>::stop(const std::string &status, const double t,
+                            const double last_accepted_step)
+  {
+    {
+      TimerOutput::Scope s(*timer, "Output");
+      for (auto &o : outputs)
+        o->finish(state(t, statistics.steps), true);
+    }
+    // Resume with the step of the last accepted one, not the cut one.
+    write_checkpoint(t, last_accepted_step);
+    write_summary(status);
+    failure_reason =
+      status + " (last converged state and a checkpoint written to " + output_dir + ")";
+  }
+
+  template <int dim>
+  std::vector<std::pair<std::string, double>> Simulator<dim>::quantities_of_interest() const
+  {
+    std::vector<std::pair<std::string, double>> all;
+    for (const auto &o : outputs)
+      for (const auto &v : o->results())
+        all.push_back(v);
+    return all;
+  }
+
+  template <int dim>
+  void Simulator<dim>::print_start() const
+  {
+    if (quiet)
+      return;
+    pcout << "anvil: " << scene.filename() << ", " << dim << "D, "
+          << triangulation.n_global_active_cells() << " cells, ";
+    if (physics.mechanics())
+      pcout << physics.mechanics()->n_dofs() << " displacement DoFs, ";
+    if (physics.heat())
+      pcout << physics.heat()->n_dofs() << " temperature DoFs, ";
+    pcout << coupling << ", " << Utilities::MPI::n_mpi_processes(mpi_communicator)
+          << " process(es) -> " << output_dir << std::endl;
+  }
+
+  template <int dim>
+  void Simulator<dim>::print_step(const StepReport<dim> &r, const double t, const double step) const
+  {
+    const double       elapsed = MPI_Wtime() - wall_start;
+    const double       eta     = t > 0 ? elapsed / t * (time.end_time - t) : 0;
+    std::ostringstream line;
+    line << "step " << std::setw(5) << statistics.steps << "  t = " << std::scientific
+         << std::setprecision(4) << t << " s  dt = " << std::setprecision(2) << step << " s";
+    if (physics.mechanics())
+      line << "  Newton " << std::setw(2) << r.mechanics().iterations << " |R| "
+           << std::setprecision(1) << r.mechanics().residuals.front() << " -> "
+           << r.mechanics().residuals.back() << " N";
+    if (physics.heat())
+      line << "  heat " << r.thermal.internal_steps << " steps";
+    if (r.staggered_iterations > 0)
+      line << "  staggered " << r.staggered_iterations << " its, dT " << std::setprecision(1)
+           << r.staggered_change << " K, contraction " << std::setprecision(2) << r.contraction;
+    line << "  ETA " << std::fixed << std::setprecision(1) << eta << " s";
+    pcout << line.str() << std::endl;
+  }
+
+  ANVIL_INSTANTIATE_CLASS(Simulator)
+} // namespace anvil
