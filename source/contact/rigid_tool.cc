@@ -5,6 +5,7 @@
 #include <anvil/contact/rigid_tool.h>
 #include <anvil/contact/tool_shapes/interface.h>
 #include <anvil/core/expression.h>
+#include <anvil/core/instantiate.h>
 #include <anvil/core/scene.h>
 
 #include <algorithm>
@@ -132,15 +133,13 @@ namespace anvil
     shape->project(y, gap, normal);
   }
 
-  template class RigidTool<2>;
-  template class RigidTool<3>;
-
-#define ANVIL_INSTANTIATE_PROJECT(dim, Number)                                                       \
-  template void RigidTool<dim>::project<Number>(const Tensor<1, dim, Number> &, double, Number &, \
-                                                Tensor<1, dim, Number> &) const;
-  ANVIL_INSTANTIATE_PROJECT(2, double)
-  ANVIL_INSTANTIATE_PROJECT(3, double)
-  ANVIL_INSTANTIATE_PROJECT(2, Sacado::Fad::DFad<double>)
-  ANVIL_INSTANTIATE_PROJECT(3, Sacado::Fad::DFad<double>)
-#undef ANVIL_INSTANTIATE_PROJECT
+#define INSTANTIATE(dim)                                                                          \
+  template class RigidTool<dim>;                                                                  \
+  template void RigidTool<dim>::project<double>(const Tensor<1, dim, double> &, double, double &, \
+                                                Tensor<1, dim, double> &) const;                  \
+  template void RigidTool<dim>::project<Sacado::Fad::DFad<double>>(                               \
+    const Tensor<1, dim, Sacado::Fad::DFad<double>> &, double, Sacado::Fad::DFad<double> &,       \
+    Tensor<1, dim, Sacado::Fad::DFad<double>> &) const;
+  ANVIL_INSTANTIATE(INSTANTIATE)
+#undef INSTANTIATE
 } // namespace anvil
