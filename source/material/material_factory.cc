@@ -1,5 +1,4 @@
 #include <anvil/core/scene.h>
-#include <anvil/material/j2_plasticity.h>
 #include <anvil/material/material_point.h>
 
 namespace anvil
@@ -10,15 +9,12 @@ namespace anvil
   {
     void declare_parameters(ParameterHandler &prm)
     {
+      const auto &registry = MaterialModelRegistry::instance();
       prm.enter_subsection("Material");
-      prm.declare_entry(
-        "Model", "hypoelastic", Patterns::Selection("hypoelastic|J2|Perzyna"),
-        "The constitutive law of this body (seed sec. 1.3): hypoelastic (thermo-elastic, "
-        "Jaumann rate, subsection Elasticity); J2 (rate-independent von Mises plasticity with "
-        "isotropic hardening, radial return: Elasticity, Hardening); Perzyna (J2 "
-        "viscoplasticity returning to the generalized criterion of eq. 18: Elasticity, "
-        "Hardening, Viscosity).");
-      J2Model::declare_parameters(prm);
+      prm.declare_entry("Model", "hypoelastic", Patterns::Selection(registry.names_pattern()),
+                        "The constitutive law of this body (seed sec. 1.3): " +
+                          registry.documentation("; ") + ".");
+      registry.declare_parameters(prm);
       prm.leave_subsection();
     }
 
@@ -27,13 +23,8 @@ namespace anvil
                                                 const std::string &path_prefix)
     {
       prm.enter_subsection("Material");
-      const std::string model = prm.get("Model");
-      auto              m     = std::make_shared<J2Model>();
-      m->plastic              = model != "hypoelastic";
-      const std::string path = path_prefix.empty() ? "Material" : path_prefix + "/Material";
-      m->parse_parameters(prm, scene, path);
-      if (model == "Perzyna")
-        m->viscosity.parse_parameters(prm, scene, path, m->elastic.reference_temperature);
+      std::shared_ptr<MaterialModel> m = MaterialModelRegistry::instance().create(prm.get("Model"));
+      m->parse_parameters(prm, scene, path_prefix.empty() ? "Material" : path_prefix + "/Material");
       prm.leave_subsection();
       return m;
     }

@@ -12,13 +12,16 @@
 namespace anvil
 {
   class Scene;
+  template <int dim>
+  class ToolShape;
 
   /**
    * A rigid tool (die, punch, anvil, wall): a surface that does not deform,
    * moves by a translation u(t) and has a prescribed temperature T(t). The
    * deformable bodies touch it through contact::node_to_tool().
    *
-   * Surfaces (in the tool's own frame, i.e. at u = 0):
+   * Surfaces (in the tool's own frame, i.e. at u = 0) are ToolShape<dim>s,
+   * registered by name (contact/tool_shapes/interface.h); the built-in ones:
    *  - `plane` (2D, 3D): through `Point`, outward `Normal` (pointing to where
    *    the bodies are; need not be unit length).
    *  - `circle` (2D), `cylinder` (3D, infinite, along `Axis`), `sphere` (3D):
@@ -96,24 +99,8 @@ namespace anvil
     std::string name;
 
   private:
-    enum class Kind
-    {
-      plane,
-      circle,
-      arc,
-      polyline,
-      cylinder,
-      sphere
-    };
-
-    std::string            type_name = "plane";
-    Kind                   kind      = Kind::plane;
-    dealii::Point<dim>     point, center;
-    dealii::Tensor<1, dim> unit_normal, unit_axis;
-    double                 radius = 1;
-    bool                   bodies_outside = true;
-    double                 start_angle = 0, angular_span = 0; // radians
-    std::vector<dealii::Point<dim>> vertices;                   // polyline
+    std::string                           type_name = "plane";
+    std::shared_ptr<const ToolShape<dim>> shape; // the surface in the tool's frame
 
     std::vector<std::shared_ptr<dealii::FunctionParser<1>>> motion; // u_d(t), one per component
     std::shared_ptr<dealii::FunctionParser<1>>              temperature_function;

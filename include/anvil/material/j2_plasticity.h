@@ -77,9 +77,14 @@ namespace anvil
   class J2Model : public MaterialModel
   {
   public:
-    static void declare_parameters(dealii::ParameterHandler &prm);
-    /// @p path: the Material subsection's path, for error messages.
-    void parse_parameters(dealii::ParameterHandler &prm, const Scene &scene, const std::string &path);
+    /// Subsection Elasticity; Hardening (declare_hardening_parameters());
+    /// Viscosity (PerzynaLaw). The registered models declare what they read.
+    static void declare_elasticity_parameters(dealii::ParameterHandler &prm);
+
+    /// Elasticity; Hardening if `plastic`; Viscosity if `viscous`.
+    void parse_parameters(dealii::ParameterHandler &prm,
+                          const Scene              &scene,
+                          const std::string        &path) override;
 
     std::unique_ptr<MaterialPoint> create_point() const override;
     double      bulk_modulus() const override { return elastic.bulk_modulus(); }
@@ -91,9 +96,10 @@ namespace anvil
       return !plastic ? "hypoelastic" : viscosity.active() ? "Perzyna" : "J2";
     }
 
-    ElasticLaw   elastic;
-    HardeningLaw hardening;
-    PerzynaLaw   viscosity;
-    bool         plastic = true; // false: thermo-hypoelastic only
+    ElasticLaw                          elastic;
+    std::unique_ptr<const HardeningLaw> hardening; // set if plastic
+    PerzynaLaw                          viscosity;
+    bool plastic = true;  // false: thermo-hypoelastic only
+    bool viscous = false; // true: Perzyna overstress (subsection Viscosity)
   };
 } // namespace anvil

@@ -4,6 +4,8 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <anvil/core/registry.h>
+
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -132,10 +134,25 @@ namespace anvil
    * A material law with its parameters: declared and parsed from one
    * subsection, shared by the points of one body.
    */
+  class Scene;
+
   class MaterialModel
   {
   public:
     virtual ~MaterialModel() = default;
+
+    /// The model's own subsections and entries, inside `subsection Material`
+    /// (none by default). Models that share a subsection (Elasticity,
+    /// Hardening) declare it with the same function, so it is declared the same way.
+    static void declare_parameters(dealii::ParameterHandler &) {}
+
+    /**
+     * Reads and checks the model's parameters, subsection Material entered;
+     * @p path (e.g. "Bodies/bar/Material") names it in errors (Scene::fail).
+     */
+    virtual void parse_parameters(dealii::ParameterHandler &prm,
+                                  const Scene              &scene,
+                                  const std::string        &path) = 0;
 
     virtual std::unique_ptr<MaterialPoint> create_point() const = 0;
 
@@ -148,8 +165,6 @@ namespace anvil
     virtual std::string name() const     = 0;
   };
 
-  class Scene;
-
   /// A material point that cannot be updated (e.g. the yield stress vanished
   /// at a temperature). The mechanics adds where the point is and cuts back.
   class MaterialPointError : public std::runtime_error
@@ -161,8 +176,15 @@ namespace anvil
   };
 
   /**
-   * The factory: `subsection Material` with `set Model = hypoelastic | ...`
-   * and one subsection per model. Declares every registered model's
+   * Material models register by name (ANVIL_REGISTER_MATERIAL_MODEL, one file
+   * per model under source/material/models/); `Material/Model` is a
+   * Patterns::Selection of the registered names.
+   */
+  using MaterialModelRegistry = Registry<MaterialModel>;
+
+  /**
+   * The factory: `subsection Material` with `set Model = <a registered name>`
+   * and the subsections of the models. Declares every registered model's
    * parameters; create() builds the selected one and checks its ranges
    * (errors via scene.fail with the entry's full path).
    */
@@ -180,3 +202,21 @@ namespace anvil
     std::shared_ptr<const MaterialModel> create_from_text(const std::string &settings);
   } // namespace MaterialFactory
 } // namespace anvil
+
+/**
+ * Registers material model @p classname (default constructible, derived from
+ * anvil::MaterialModel, with a static declare_parameters(ParameterHandler &)
+ * declaring its subsections inside `subsection Material`) under @p name with
+ * @p documentation (it becomes part of the help of `Material/Model`). At
+ * namespace scope of one .cc file, in the library or in a program linked
+ * against it.
+ */
+#define ANVIL_REGISTER_MATERIAL_MODEL(classname, name, documentation)                             \
+  namespace                                                                                      \
+  {                                                                                              \
+    const bool ANVIL_REGISTRY_UNIQUE(anvil_material_model_) =                                    \
+      ::anvil::MaterialModelRegistry::instance().add(                                            \
+        name, documentation,                                                                     \
+        []() -> std::unique_ptr<::anvil::MaterialModel> { return std::make_unique<classname>(); }, \
+        [](dealii::ParameterHandler &prm) { classname::declare_parameters(prm); });              \
+  }

@@ -1,0 +1,55 @@
+#include <anvil/core/scene.h>
+#include <anvil/material/hardening/interface.h>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  namespace
+  {
+    /// σᵥ = σ₀ + h ε̄ (seed eq. 16 with linear isotropic hardening).
+    class LinearHardening : public HardeningLaw
+    {
+    public:
+      static void declare_parameters(ParameterHandler &prm)
+      {
+        declare_common_entry(prm, "Initial yield stress");
+        declare_common_entry(prm, "Hardening modulus");
+      }
+
+      void parse_parameters(ParameterHandler &prm, const Scene &scene, const std::string &path) override
+      {
+        sigma0      = prm.get_double("Initial yield stress");
+        h           = prm.get_double("Hardening modulus");
+        soft_sigma0 = softened("initial yield stress");
+        soft_h      = softened("hardening modulus");
+        if (!(sigma0 > 0))
+          scene.fail(path + "/Initial yield stress", "must be > 0 MPa for the linear model");
+      }
+
+      Value evaluate(const double eps, const double T) const override
+      {
+        const double theta = thermal->factor(T), dtheta = thermal->derivative(T);
+        Value        v;
+        v.stress                 = scale(soft_sigma0, theta) * sigma0 + scale(soft_h, theta) * h * eps;
+        v.slope                  = scale(soft_h, theta) * h;
+        v.temperature_derivative = scale_derivative(soft_sigma0, dtheta) * sigma0 +
+                                   scale_derivative(soft_h, dtheta) * h * eps;
+        return v;
+      }
+
+      bool is_linear() const override { return true; }
+      bool is_nondecreasing(const double T) const override
+      {
+        return scale(soft_h, thermal->factor(T)) * h >= 0;
+      }
+
+    private:
+      double sigma0 = 0, h = 0;
+      bool   soft_sigma0 = true, soft_h = true;
+    };
+  } // namespace
+} // namespace anvil
+
+ANVIL_REGISTER_HARDENING_LAW(anvil::LinearHardening, "linear",
+                             "s0 + h eps (Initial yield stress s0, Hardening modulus h)")

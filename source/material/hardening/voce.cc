@@ -1,0 +1,67 @@
+#include <anvil/core/scene.h>
+#include <anvil/material/hardening/interface.h>
+
+#include <cmath>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  namespace
+  {
+    /// σᵥ = σ₀ + (σ∞ − σ₀)(1 − e^{−δ ε̄}) (Voce 1948).
+    class VoceHardening : public HardeningLaw
+    {
+    public:
+      static void declare_parameters(ParameterHandler &prm)
+      {
+        declare_common_entry(prm, "Initial yield stress");
+        declare_common_entry(prm, "Saturation stress");
+        declare_common_entry(prm, "Saturation exponent");
+      }
+
+      void parse_parameters(ParameterHandler &prm, const Scene &scene, const std::string &path) override
+      {
+        sigma0         = prm.get_double("Initial yield stress");
+        sigma_inf      = prm.get_double("Saturation stress");
+        delta          = prm.get_double("Saturation exponent");
+        soft_sigma0    = softened("initial yield stress");
+        soft_sigma_inf = softened("saturation stress");
+        if (!(sigma0 > 0))
+          scene.fail(path + "/Initial yield stress", "must be > 0 MPa for the voce model");
+        if (!(sigma_inf >= sigma0))
+          scene.fail(path + "/Saturation stress", "must be >= Initial yield stress");
+      }
+
+      Value evaluate(const double eps, const double T) const override
+      {
+        const double theta = thermal->factor(T), dtheta = thermal->derivative(T);
+        const double e     = 1 - std::exp(-delta * eps);
+        const double s0 = scale(soft_sigma0, theta) * sigma0, s_inf = scale(soft_sigma_inf, theta) * sigma_inf;
+        Value v;
+        v.stress                 = s0 + (s_inf - s0) * e;
+        v.slope                  = (s_inf - s0) * delta * (1 - e);
+        v.temperature_derivative = scale_derivative(soft_sigma0, dtheta) * sigma0 +
+                                   (scale_derivative(soft_sigma_inf, dtheta) * sigma_inf -
+                                    scale_derivative(soft_sigma0, dtheta) * sigma0) *
+                                     e;
+        return v;
+      }
+
+      // Slope (σ∞ − σ₀) δ e^{−δ ε̄} with δ ≥ 0.
+      bool is_nondecreasing(const double T) const override
+      {
+        const double theta = thermal->factor(T);
+        return scale(soft_sigma_inf, theta) * sigma_inf - scale(soft_sigma0, theta) * sigma0 >= 0;
+      }
+
+    private:
+      double sigma0 = 0, sigma_inf = 0, delta = 0;
+      bool   soft_sigma0 = true, soft_sigma_inf = true;
+    };
+  } // namespace
+} // namespace anvil
+
+ANVIL_REGISTER_HARDENING_LAW(anvil::VoceHardening, "voce",
+                             "s0 + (s_inf - s0)(1 - exp(-delta eps)) (Initial yield stress s0, "
+                             "Saturation stress s_inf, Saturation exponent delta)")

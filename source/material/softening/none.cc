@@ -1,0 +1,17 @@
+#include <anvil/material/softening/interface.h>
+
+namespace anvil
+{
+  namespace
+  {
+    /// θ = 1: the yield stress does not depend on temperature.
+    class NoSoftening : public ThermalSoftening
+    {
+    public:
+      double factor(double) const override { return 1; }
+      double derivative(double) const override { return 0; }
+    };
+  } // namespace
+} // namespace anvil
+
+ANVIL_REGISTER_THERMAL_SOFTENING(anvil::NoSoftening, "none", "theta = 1.")
