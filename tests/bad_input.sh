@@ -50,7 +50,10 @@ expect "contact: unknown Slave boundary (file)" "contact_unknown_slave.prm:20: .
 expect "contact: unknown Slave boundary (--set)" "--set.*'Contact/sliding/Slave'.*'nowhere'.*left, right, bottom, top" "$anvil" "$c" --set "Contact/sliding/Slave=nowhere"
 expect "contact: empty Slave" "--set: 'Contact/sliding/Slave' is empty: expected the name of a boundary" "$anvil" "$c" --set "Contact/sliding/Slave="
 expect "contact: Master neither boundary nor tool" "--set: 'Contact/sliding/Master' = 'ceiling' is neither a boundary \(left, right, bottom, top\) nor a tool" "$anvil" "$c" --set "Contact/sliding/Master=ceiling"
-expect "contact: Master = Slave" "--set: 'Contact/sliding/Master' is the Slave boundary" "$anvil" "$c" --set "Contact/sliding/Master=bottom"
+# Self-contact (Master = Slave) is allowed; lists that share part of their boundaries are not.
+expect "contact: Master shares part of Slave" "--set: 'Contact/sliding/Master' = 'bottom, left' shares boundaries with Slave = 'bottom': expected the same list" "$anvil" "$c" --set "Contact/sliding/Master=bottom, left"
+expect "contact: unknown boundary in a list" "--set: 'Contact/sliding/Slave' = 'bottom, nowhere': 'nowhere' is not a boundary of the mesh \(left, right, bottom, top\)" "$anvil" "$c" --set "Contact/sliding/Slave=bottom, nowhere"
+expect "contact: boundary twice in a list" "--set: 'Contact/sliding/Slave' = 'bottom, bottom' names a boundary twice" "$anvil" "$c" --set "Contact/sliding/Slave=bottom, bottom"
 expect "contact: zero normal penalty" "--set: 'Contact/sliding/Penalty normal' must be > 0" "$anvil" "$c" --set "Contact/sliding/Penalty normal=0"
 expect "contact: negative normal penalty" "--set 'Contact/sliding/Penalty normal=-1'.*Double 0" "$anvil" "$c" --set "Contact/sliding/Penalty normal=-1"
 expect "contact: friction without tangential penalty" "--set: 'Contact/sliding/Penalty tangent' must be > 0 when there is friction" "$anvil" "$c" --set "Contact/sliding/Penalty tangent=0"

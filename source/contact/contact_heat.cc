@@ -16,7 +16,7 @@ namespace anvil
   using namespace dealii;
 
   template <int dim>
-  double ContactProblem<dim>::characteristic_area(const unsigned int node, const types::boundary_id surface,
+  double ContactProblem<dim>::characteristic_area(const unsigned int node, const Surface &surface,
                                                   const Tensor<1, dim> &normal) const
   {
     const auto &x    = x_last;
@@ -31,17 +31,17 @@ namespace anvil
         t[0] = -normal[1];
         t[1] = normal[0];
         for (const auto f : node_faces[node])
-          if (faces[f].boundary == surface)
+          if (surface.has(faces[f]))
             sum += x[faces[f].nodes[1]] - x[faces[f].nodes[0]];
         if (sum * t < 0)
           t *= -1;
         for (const auto f : node_faces[node])
-          if (faces[f].boundary == surface)
+          if (surface.has(faces[f]))
             area += 0.5 * std::max(0., (x[faces[f].nodes[1]] - x[faces[f].nodes[0]]) * t);
       }
     else
       for (const auto f : node_faces[node])
-        if (faces[f].boundary == surface)
+        if (surface.has(faces[f]))
           {
             // A quarter of each facet projected on the master's tangent plane,
             // a facet turned away counting zero.
@@ -59,7 +59,7 @@ namespace anvil
   bool ContactProblem<dim>::has_heat() const
   {
     for (const auto &p : pairs)
-      if (p.conductance > 0 || p.law.mu_dynamic > 0)
+      if (p.conductance > 0 || (p.frictional_heating && p.law.mu_dynamic > 0))
         return true;
     return false;
   }
@@ -135,16 +135,19 @@ namespace anvil
           continue;
         // Two-pass: each pass carries half the contact force, so the pressure
         // is twice its share and each pass conducts through half the area.
-        const double half = pair.two_pass ? 0.5 : 1.;
-        const double area =
-          characteristic_area(n, pass == 0 ? pair.slave : pair.master, trial.normal);
+        // Self-contact: one loop over the nodes of both sides of the fold, the
+        // same halving (each side's nodes carry half the fold's pressure).
+        const double half = pair.penalty_share();
+        const double area = characteristic_area(n, slave_side(p, pass), trial.normal);
         if (!(area > 0))
           continue;
         const double pressure = trial.normal_force / (half * area); // eq. 34
         const double h        = pair.conductance > 0 ?
                                   half * pair.conductance * std::pow(pressure / pair.hardness, pair.exponent) :
                                   0.;
-        const double power    = trial.work / dt; // eq. 31: zero while sticking
+        // eq. 31: zero while sticking; none if the pair's Frictional heating
+        // is off (the work is dissipated, not heat: seed §4.3, case 2).
+        const double power    = pair.frictional_heating ? trial.work / dt : 0.;
         if (h == 0 && power == 0)
           continue;
         local.insert(local.end(), {double(p), double(n), h * area, power,

@@ -16,10 +16,48 @@
 #include <iomanip>
 #include <limits>
 #include <numeric>
+#include <set>
 
 namespace anvil
 {
   using namespace dealii;
+
+  namespace
+  {
+    /// A comma-separated list of boundary names, each checked, as sorted ids.
+    template <int dim>
+    std::vector<types::boundary_id> boundary_list(const std::string &text, const std::string &parameter,
+                                                  const Scene &scene, const Geometry<dim> &geometry,
+                                                  const bool or_tool = false)
+    {
+      const std::string boundaries = "(" + geometry.list_boundary_names() + ")";
+      if (text.empty())
+        scene.fail(parameter, or_tool ? "is empty: expected boundaries " + boundaries +
+                                          " or a tool of Contact/Tools" :
+                                        "is empty: expected the name of a boundary, or a "
+                                        "comma-separated list " + boundaries);
+      const auto names = Utilities::split_string_list(text, ',');
+      std::vector<types::boundary_id> ids;
+      for (const auto &name : names)
+        {
+          if (geometry.boundary_names().count(name) == 0)
+            {
+              if (names.size() == 1)
+                scene.fail(parameter, "= '" + name + "' is " +
+                                        (or_tool ? "neither a boundary " + boundaries +
+                                                     " nor a tool of Contact/Tools" :
+                                                   "not a boundary of the mesh " + boundaries));
+              scene.fail(parameter, "= '" + text + "': '" + name + "' is not a boundary of the mesh " +
+                                      boundaries);
+            }
+          ids.push_back(geometry.boundary_id(name, scene.where(parameter)));
+        }
+      std::sort(ids.begin(), ids.end());
+      if (std::adjacent_find(ids.begin(), ids.end()) != ids.end())
+        scene.fail(parameter, "= '" + text + "' names a boundary twice");
+      return ids;
+    }
+  } // namespace
 
   template <int dim>
   void ContactProblem<dim>::declare_parameters(ParameterHandler               &prm,
@@ -30,19 +68,26 @@ namespace anvil
     prm.declare_entry("Maximum penetration", "0", Patterns::Double(0),
                       "A converged step whose largest penetration exceeds this (mm) is cut back "
                       "and reported; 0: half the shortest edge of the contact surfaces.");
+    prm.declare_entry("Frictional heating", "true", Patterns::Bool(),
+                      "false: no pair's frictional power heats the surfaces (each pair's "
+                      "Thermal/Frictional heating, for all at once: the seed's tube, case 2).");
     for (const auto &name : pair_names)
       {
         prm.enter_subsection(name);
         prm.declare_entry("Slave", "", Patterns::Anything(),
-                          "The boundary whose nodes are the slaves (a boundary name).");
+                          "The boundaries whose nodes are the slaves (comma-separated boundary "
+                          "names).");
         prm.declare_entry("Master", "", Patterns::Anything(),
-                          "The boundary whose faces are the masters, or the name of a rigid tool "
-                          "in Contact/Tools.");
+                          "The boundaries whose faces are the masters (comma-separated; the same "
+                          "list as Slave: self-contact, e.g. a folding skin), or the name of a "
+                          "rigid tool in Contact/Tools.");
         prm.declare_entry("Two-pass", "automatic", Patterns::Selection("automatic|true|false"),
                           "true: both surfaces act as slave and master (the seed's two-pass "
                           "approach), each pass with half the penalties; false: one pass, Slave "
                           "nodes on Master faces; automatic: two passes between two boundaries, "
-                          "one against a tool.");
+                          "one against a tool. Self-contact: every node is a slave of the faces "
+                          "across the fold, so one loop is both passes; true/automatic halve the "
+                          "penalties as between bodies, false keeps them whole (twice as stiff).");
         prm.declare_entry("Penalty normal", "0", Patterns::Double(0),
                           "c_N of t_N = c_N <-g_N> (eq. 27): N/mm per node, or N/mm^3 per unit "
                           "area (Penalty per = area). Must be > 0.");
@@ -68,6 +113,10 @@ namespace anvil
         prm.declare_entry("Relative effusivity", "0.5", Patterns::Double(0, 1),
                           "Share of the frictional heat that goes to the slave side (eq. 31-33), "
                           "0 to 1.");
+        prm.declare_entry("Frictional heating", "true", Patterns::Bool(),
+                          "true: the frictional power D = t_T . slip / dt heats the surfaces "
+                          "(eq. 31-33); false: it is dissipated without heating them (the seed's "
+                          "tube, case 2), the conduction across the contact stays.");
         prm.leave_subsection();
         prm.leave_subsection();
       }
@@ -88,6 +137,7 @@ namespace anvil
     tools.clear();
     prm.enter_subsection("Contact");
     penetration_limit = prm.get_double("Maximum penetration");
+    const bool frictional_heating = prm.get_bool("Frictional heating");
     for (const auto &name : scene.contact_tool_names())
       {
         prm.enter_subsection(name);
@@ -104,13 +154,7 @@ namespace anvil
         p.name        = name;
         p.slave_name  = trim(prm.get("Slave"));
         p.master_name = trim(prm.get("Master"));
-        if (p.slave_name.empty())
-          scene.fail(path + "Slave", "is empty: expected the name of a boundary (" +
-                                       geometry.list_boundary_names() + ")");
-        if (geometry.boundary_names().count(p.slave_name) == 0)
-          scene.fail(path + "Slave", "= '" + p.slave_name + "' is not a boundary of the mesh (" +
-                                       geometry.list_boundary_names() + ")");
-        p.slave = geometry.boundary_id(p.slave_name, scene.where(path + "Slave"));
+        p.slaves      = boundary_list(p.slave_name, path + "Slave", scene, geometry);
         for (unsigned int k = 0; k < tools.size(); ++k)
           if (tools[k]->name == p.master_name)
             p.tool = k;
@@ -119,17 +163,17 @@ namespace anvil
                                         "' names both a tool and a boundary: rename the tool");
         if (p.tool < 0)
           {
-            if (p.master_name.empty())
-              scene.fail(path + "Master", "is empty: expected a boundary (" +
-                                            geometry.list_boundary_names() +
-                                            ") or a tool of Contact/Tools");
-            if (geometry.boundary_names().count(p.master_name) == 0)
-              scene.fail(path + "Master",
-                         "= '" + p.master_name + "' is neither a boundary (" +
-                           geometry.list_boundary_names() + ") nor a tool of Contact/Tools");
-            p.master = geometry.boundary_id(p.master_name, scene.where(path + "Master"));
-            if (p.master == p.slave)
-              scene.fail(path + "Master", "is the Slave boundary: self-contact is not supported");
+            p.masters = boundary_list(p.master_name, path + "Master", scene, geometry, true);
+            // Self-contact: the same boundaries on both sides. Partly shared
+            // lists would count the shared part twice (once per pass).
+            p.self = p.slaves == p.masters;
+            std::vector<types::boundary_id> shared;
+            std::set_intersection(p.slaves.begin(), p.slaves.end(), p.masters.begin(),
+                                  p.masters.end(), std::back_inserter(shared));
+            if (!p.self && !shared.empty())
+              scene.fail(path + "Master", "= '" + p.master_name + "' shares boundaries with Slave = '" +
+                                            p.slave_name + "': expected the same list (self-contact) "
+                                            "or boundaries disjoint from the Slave's");
           }
         const std::string passes = prm.get("Two-pass");
         p.two_pass = passes == "true" || (passes == "automatic" && p.tool < 0);
@@ -154,6 +198,7 @@ namespace anvil
         p.hardness    = prm.get_double("Hardness");
         p.exponent    = prm.get_double("Exponent");
         p.slave_share = prm.get_double("Relative effusivity");
+        p.frictional_heating = frictional_heating && prm.get_bool("Frictional heating");
         prm.leave_subsection();
         if (!(p.hardness > 0))
           scene.fail(path + "Thermal/Hardness", "must be > 0 MPa");

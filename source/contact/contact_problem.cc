@@ -31,9 +31,8 @@ namespace anvil
     std::set<types::boundary_id> wanted;
     for (const auto &p : pairs)
       {
-        wanted.insert(p.slave);
-        if (p.tool < 0)
-          wanted.insert(p.master);
+        wanted.insert(p.slaves.begin(), p.slaves.end());
+        wanted.insert(p.masters.begin(), p.masters.end());
       }
 
     // Local faces: boundary, then per vertex its dim dofs and reference position.
@@ -159,6 +158,32 @@ namespace anvil
         std::sort(s.nodes.begin(), s.nodes.end());
         s.nodes.erase(std::unique(s.nodes.begin(), s.nodes.end()), s.nodes.end());
       }
+    // Each pair's two sides: the union of its boundaries' faces and nodes.
+    pair_sides.assign(pairs.size(), {});
+    neighbourhood.assign(pairs.size(), {});
+    for (unsigned int p = 0; p < pairs.size(); ++p)
+      for (unsigned int k = 0; k < 2; ++k)
+        {
+          Surface &side = pair_sides[p][k];
+          for (const auto b : k == 0 ? pairs[p].slaves : pairs[p].masters)
+            {
+              side.boundaries.insert(b);
+              side.faces.insert(side.faces.end(), surfaces[b].faces.begin(), surfaces[b].faces.end());
+              side.nodes.insert(side.nodes.end(), surfaces[b].nodes.begin(), surfaces[b].nodes.end());
+            }
+          std::sort(side.faces.begin(), side.faces.end());
+          std::sort(side.nodes.begin(), side.nodes.end());
+          side.nodes.erase(std::unique(side.nodes.begin(), side.nodes.end()), side.nodes.end());
+        }
+    for (unsigned int p = 0; p < pairs.size(); ++p)
+      if (pairs[p].self)
+        {
+          // Faces indexed as in `faces`; those of other boundaries left empty.
+          std::vector<std::vector<unsigned int>> side_faces(faces.size());
+          for (const auto f : pair_sides[p][0].faces)
+            side_faces[f] = faces[f].nodes;
+          neighbourhood[p].build(side_faces, node_reference.size());
+        }
     if (penetration_limit == 0)
       penetration_limit = faces.empty() ? std::numeric_limits<double>::max() : 0.5 * shortest;
     committed.clear();
@@ -224,7 +249,7 @@ namespace anvil
     for (const auto f : node_faces[node])
       {
         const auto &nodes = faces[f].nodes;
-        if (faces[f].boundary != faces[surface.faces.front()].boundary)
+        if (!surface.has(faces[f]))
           continue;
         if constexpr (dim == 2)
           area += 0.5 * x[nodes[0]].distance(x[nodes[1]]);
@@ -237,6 +262,19 @@ namespace anvil
     if (axisymmetric)
       area *= 2 * numbers::PI * x[node][0];
     return area;
+  }
+
+  template <int dim>
+  bool ContactProblem<dim>::may_touch(const unsigned int p, const unsigned int node,
+                                      const unsigned int face, const std::vector<Point<dim>> &x) const
+  {
+    // A node never touches a face it is a vertex of (a corner shared by the
+    // Slave and the Master boundaries of one body).
+    const auto &nodes = faces[face].nodes;
+    if (std::find(nodes.begin(), nodes.end(), node) != nodes.end())
+      return false;
+    // Self-contact: not the node's own surface next to it (self_contact.h).
+    return !pairs[p].self || neighbourhood[p].may_touch(node, face, x);
   }
 
   template <int dim>
@@ -278,11 +316,9 @@ namespace anvil
     areas.clear();
     trials.clear();
     for (unsigned int p = 0; p < pairs.size(); ++p)
-      for (unsigned int pass = 0; pass < (pairs[p].two_pass ? 2u : 1u); ++pass)
+      for (unsigned int pass = 0; pass < pairs[p].passes(); ++pass)
         {
-          const auto slave_id  = pass == 0 ? pairs[p].slave : pairs[p].master;
-          const auto master_id = pass == 0 ? pairs[p].master : pairs[p].slave;
-          const Surface &slave = surfaces[slave_id];
+          const Surface &slave = slave_side(p, pass);
           std::vector<unsigned int> mine;
           for (const auto n : slave.nodes)
             if (node_mine[n])
@@ -294,10 +330,11 @@ namespace anvil
             continue;
           // Couplings that may occur in this step: a generous search.
           std::map<unsigned int, std::vector<unsigned int>> candidates;
-          candidate_faces(surfaces[master_id], x_old, 1.5 * largest_face, mine, candidates);
+          candidate_faces(master_side(p, pass), x_old, 1.5 * largest_face, mine, candidates);
           for (const auto &[n, list] : candidates)
             for (const auto f : list)
-              if (allowed.insert({p, pass, n, f}).second)
+              if ((!pairs[p].self || !neighbourhood[p].always_excluded(n, f)) &&
+                  allowed.insert({p, pass, n, f}).second)
                 grew = true;
         }
   }
@@ -338,18 +375,16 @@ namespace anvil
     for (unsigned int p = 0; p < pairs.size(); ++p)
       {
         const Pair &pair = pairs[p];
-        for (unsigned int pass = 0; pass < (pair.two_pass ? 2u : 1u); ++pass)
+        for (unsigned int pass = 0; pass < pair.passes(); ++pass)
           {
-            const auto     slave_id  = pass == 0 ? pair.slave : pair.master;
-            const auto     master_id = pass == 0 ? pair.master : pair.slave;
-            const Surface &slave     = surfaces[slave_id];
+            const Surface &slave = slave_side(p, pass);
             std::vector<unsigned int> mine;
             for (const auto n : slave.nodes)
               if (node_mine[n])
                 mine.push_back(n);
             std::map<unsigned int, std::vector<unsigned int>> candidates;
             if (pair.tool < 0)
-              candidate_faces(surfaces[master_id], x, 0.5 * largest_face, mine, candidates);
+              candidate_faces(master_side(p, pass), x, 0.5 * largest_face, mine, candidates);
 
             for (const auto n : mine)
               {
@@ -357,7 +392,7 @@ namespace anvil
                 const auto c     = committed.find(key);
                 const auto state = c == committed.end() ? contact::NodeState<dim>() : c->second;
                 contact::FrictionLaw law = pair.law;
-                const double scale = (pair.per_area ? areas[key] : 1.) * (pair.two_pass ? 0.5 : 1.);
+                const double scale = (pair.per_area ? areas[key] : 1.) * pair.penalty_share();
                 law.penalty_normal *= scale;
                 law.penalty_tangent *= scale;
 
@@ -372,6 +407,8 @@ namespace anvil
                     int best_face = -1;
                     for (const auto f : candidates[n])
                       {
+                        if (!may_touch(p, n, f, x))
+                          continue;
                         std::vector<Point<dim>> xm, xm_old;
                         for (const auto m : faces[f].nodes)
                           {
@@ -381,6 +418,12 @@ namespace anvil
                         auto r = contact::node_to_segment(x[n], x_old[n], xm, xm_old, state, law,
                                                           false);
                         if (!r.projection_inside)
+                          continue;
+                        // Self-contact: a node deeper behind a face of its own
+                        // surface than 1.5 penetration limits is seeing it through
+                        // the wall (the other skin of a thin wall), not touching it;
+                        // a step reaching the limit is cut back before this matters.
+                        if (pair.self && -r.gap > 1.5 * penetration_limit)
                           continue;
                         if (best_face < 0 || std::abs(r.gap) < std::abs(result.gap))
                           {

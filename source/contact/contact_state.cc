@@ -77,7 +77,7 @@ namespace anvil
         o.position = trial.position;
         if (trial.normal_force > 0 && trial.area > 0)
           {
-            o.pressure    = trial.normal_force / ((pair.two_pass ? 0.5 : 1.) * trial.area);
+            o.pressure    = trial.normal_force / (pair.penalty_share() * trial.area);
             o.conductance = pair.conductance > 0 ?
                               pair.conductance * std::pow(o.pressure / pair.hardness, pair.exponent) :
                               0.;

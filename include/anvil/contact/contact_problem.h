@@ -9,8 +9,10 @@
 
 #include <anvil/contact/contact_element.h>
 #include <anvil/contact/rigid_tool.h>
+#include <anvil/contact/self_contact.h>
 #include <anvil/core/heat_exchange.h>
 
+#include <array>
 #include <functional>
 #include <map>
 #include <memory>
@@ -66,16 +68,24 @@ namespace anvil
 
     struct Pair
     {
-      std::string                name;
-      std::string                slave_name, master_name;
-      dealii::types::boundary_id slave  = dealii::numbers::invalid_boundary_id;
-      dealii::types::boundary_id master = dealii::numbers::invalid_boundary_id;
-      int                        tool   = -1; // index into tools, or -1
-      bool                       two_pass = false;
-      bool                       per_area = false;
-      contact::FrictionLaw       law;
+      std::string                             name;
+      std::string                             slave_name, master_name; // as written in the scene
+      std::vector<dealii::types::boundary_id> slaves, masters;         // sorted; masters empty for a tool
+      int                                     tool     = -1; // index into tools, or -1
+      bool                                    two_pass = false;
+      /// Self-contact: Slave and Master are the same boundaries. Every node is
+      /// a slave of the faces across the fold, so one loop over the nodes is
+      /// already both passes (two-pass: half penalties, as between bodies).
+      bool                                    self     = false;
+      bool                                    per_area = false;
+      contact::FrictionLaw                    law;
       // Thermal contact (eq. 30–34).
       double conductance = 0, hardness = 1, exponent = 1, slave_share = 0.5;
+      bool   frictional_heating = true; // false: the frictional power is not heat (seed §4.3, case 2)
+      /// Loops over the slave nodes: two for a two-pass pair between distinct boundaries.
+      unsigned int passes() const { return two_pass && !self ? 2u : 1u; }
+      /// Penalty factor: a two-pass pair shares the contact between its passes.
+      double penalty_share() const { return two_pass ? 0.5 : 1.; }
     };
 
     /// The totals of one pair over the committed steps (or at the last commit).
@@ -196,10 +206,21 @@ namespace anvil
       std::vector<unsigned int>  nodes; // ordered: the normal points out of the body
       dealii::types::boundary_id boundary;
     };
-    struct Surface // one boundary's faces and nodes
+    struct Surface // the faces and nodes of one or several boundaries
     {
-      std::vector<unsigned int> faces, nodes;
+      std::set<dealii::types::boundary_id> boundaries;
+      std::vector<unsigned int>            faces, nodes;
+      bool has(const Face &f) const { return boundaries.count(f.boundary) > 0; }
     };
+    /// The two sides of pair p (0 slave, 1 master; the master empty for a tool).
+    const Surface &side(unsigned int p, unsigned int s) const { return pair_sides[p][s]; }
+    /// The surface a pass's slave nodes / master faces lie on.
+    const Surface &slave_side(unsigned int p, unsigned int pass) const { return side(p, pass == 0 ? 0 : 1); }
+    const Surface &master_side(unsigned int p, unsigned int pass) const { return side(p, pass == 0 ? 1 : 0); }
+    /// Whether @p face may be a master of @p node in pair @p p at the positions @p x
+    /// (self-contact: not the node's own surface next to it, self_contact.h).
+    bool may_touch(unsigned int p, unsigned int node, unsigned int face,
+                   const std::vector<dealii::Point<dim>> &x) const;
     /// Node states keyed by (pair, pass, node).
     using Key = std::tuple<unsigned int, unsigned int, unsigned int>;
     struct Trial
@@ -225,7 +246,7 @@ namespace anvil
     /// The seed's characteristic area of a slave node (§3.1, Fig. 2): (L₁ + L₂)/2 with
     /// L₁, L₂ the projections of its two slave segments on the master's tangent,
     /// each clamped at zero (3D: its facets' quarters projected on the tangent plane).
-    double characteristic_area(unsigned int node, dealii::types::boundary_id surface,
+    double characteristic_area(unsigned int node, const Surface &surface,
                                const dealii::Tensor<1, dim> &normal) const;
     std::vector<dealii::Point<dim>> x_last; // surface nodes at the last assemble()
 
@@ -254,6 +275,8 @@ namespace anvil
     std::vector<Face>                                            faces;
     std::vector<std::vector<unsigned int>>                       node_faces; // faces of each node
     std::map<dealii::types::boundary_id, Surface>                surfaces;
+    std::vector<std::array<Surface, 2>>                          pair_sides;    // per pair: slave, master
+    std::vector<contact::SelfContactNeighbourhood>               neighbourhood; // per pair (self-contact only)
     double                                                       largest_face = 0;
 
     // The step.
