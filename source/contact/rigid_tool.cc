@@ -51,7 +51,7 @@ namespace anvil
     }();
     prm.declare_entry("Type", "plane", Patterns::Selection(names),
                       "Surface of the rigid tool: in " + std::to_string(dim) + "D " +
-                        ToolShapeRegistry<dim>::instance().documentation("; ") + " (in " +
+                        ToolShapeRegistry<dim>::instance().documentation(" ") + " (in " +
                         std::to_string(other) + "D: " + list_of(ToolShapeRegistry<other>::instance().names()) +
                         ").");
     // The entries of the other dimension's shapes too, so that a scene naming

@@ -11,7 +11,7 @@ namespace anvil
     prm.enter_subsection("Physics");
     prm.declare_entry("Coupling", "mechanical only", Patterns::Selection(schemes.names_pattern()),
                       "Which physics the scene solves and how they are coupled (seed sec. 2.2). " +
-                        schemes.documentation("; "));
+                        schemes.documentation(" "));
     schemes.declare_parameters(prm);
     prm.leave_subsection();
   }

@@ -13,7 +13,7 @@ namespace anvil
       prm.enter_subsection("Material");
       prm.declare_entry("Model", "hypoelastic", Patterns::Selection(registry.names_pattern()),
                         "The constitutive law of this body (seed sec. 1.3): " +
-                          registry.documentation("; ") + ".");
+                          registry.documentation(" "));
       registry.declare_parameters(prm);
       prm.leave_subsection();
     }

@@ -5,6 +5,7 @@
 
 #include <anvil/core/scene.h>
 #include <anvil/geometry/geometry.h>
+#include <anvil/core/instantiate.h>
 #include <anvil/mechanics/boundary_conditions.h>
 
 #include <iostream>
@@ -174,6 +175,5 @@ namespace anvil
                                                  bc.mask);
   }
 
-  template class BoundaryConditions<2>;
-  template class BoundaryConditions<3>;
+  ANVIL_INSTANTIATE_CLASS(BoundaryConditions)
 } // namespace anvil

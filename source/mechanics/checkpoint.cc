@@ -3,6 +3,7 @@
 // triangulation's cells, so a run can resume on any number of processes.
 #include <deal.II/distributed/solution_transfer.h>
 
+#include <anvil/core/instantiate.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
 #include <cstring>
@@ -128,14 +129,5 @@ namespace anvil
     previous_time_step = named_value(v, "previous_time_step");
   }
 
-  template void MechanicalProblem<2>::prepare_checkpoint();
-  template void MechanicalProblem<3>::prepare_checkpoint();
-  template void MechanicalProblem<2>::load_checkpoint();
-  template void MechanicalProblem<3>::load_checkpoint();
-  template NamedValues MechanicalProblem<2>::checkpoint_scalars() const;
-  template NamedValues MechanicalProblem<3>::checkpoint_scalars() const;
-  template void MechanicalProblem<2>::restore_scalars(const NamedValues &);
-  template void MechanicalProblem<3>::restore_scalars(const NamedValues &);
-  template std::vector<TrilinosWrappers::MPI::Vector *> MechanicalProblem<2>::checkpoint_targets();
-  template std::vector<TrilinosWrappers::MPI::Vector *> MechanicalProblem<3>::checkpoint_targets();
+  ANVIL_INSTANTIATE_CLASS(MechanicalProblem)
 } // namespace anvil

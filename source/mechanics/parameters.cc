@@ -162,6 +162,7 @@ namespace anvil
       axisymmetric = false;
   }
 
-  template struct MechanicalProblem<2>::Parameters;
-  template struct MechanicalProblem<3>::Parameters;
+#define INSTANTIATE(dim) template struct MechanicalProblem<dim>::Parameters;
+  ANVIL_INSTANTIATE(INSTANTIATE)
+#undef INSTANTIATE
 } // namespace anvil

@@ -9,6 +9,7 @@
 #include <anvil/core/scene.h>
 #include <anvil/contact/contact_problem.h>
 #include <anvil/mechanics/assembly_kernels.h>
+#include <anvil/core/instantiate.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
 #include <cmath>
@@ -255,18 +256,5 @@ namespace anvil
     return Utilities::MPI::sum(energy, mpi_communicator);
   }
 
-  template void MechanicalProblem<2>::setup_dynamics();
-  template void MechanicalProblem<3>::setup_dynamics();
-  template double MechanicalProblem<2>::newmark_acceleration(double, double, double, double) const;
-  template double MechanicalProblem<3>::newmark_acceleration(double, double, double, double) const;
-  template double MechanicalProblem<2>::elastic_strain_energy() const;
-  template double MechanicalProblem<3>::elastic_strain_energy() const;
-  template void MechanicalProblem<2>::commit_step();
-  template void MechanicalProblem<3>::commit_step();
-  template double MechanicalProblem<2>::Energy::balance_error() const;
-  template double MechanicalProblem<3>::Energy::balance_error() const;
-  template void MechanicalProblem<2>::lumped_mass(TrilinosWrappers::MPI::Vector &) const;
-  template void MechanicalProblem<3>::lumped_mass(TrilinosWrappers::MPI::Vector &) const;
-  template double MechanicalProblem<2>::kinetic_energy(const TrilinosWrappers::MPI::Vector &) const;
-  template double MechanicalProblem<3>::kinetic_energy(const TrilinosWrappers::MPI::Vector &) const;
+  ANVIL_INSTANTIATE_CLASS(MechanicalProblem)
 } // namespace anvil

@@ -9,6 +9,7 @@
 #include <anvil/core/input_error.h>
 #include <anvil/core/scene.h>
 #include <anvil/geometry/geometry.h>
+#include <anvil/core/instantiate.h>
 #include <anvil/thermal/thermal_problem.h>
 
 #include "arkode_integrator.h"
@@ -523,8 +524,6 @@ namespace anvil
         total_heat_in[static_cast<types::boundary_id>(std::stoul(key.substr(prefix.size())))] = q;
   }
 
-  template class ThermalBoundaryConditions<2>;
-  template class ThermalBoundaryConditions<3>;
-  template class ThermalProblem<2>;
-  template class ThermalProblem<3>;
+  ANVIL_INSTANTIATE_CLASS(ThermalBoundaryConditions)
+  ANVIL_INSTANTIATE_CLASS(ThermalProblem)
 } // namespace anvil

@@ -22,8 +22,8 @@ namespace anvil
    * files, before main()).
    *
    * @p Base is the interface; parts are made by a factory taking @p Args.
-   * Names are kept in registration order within a file and sorted otherwise;
-   * lookups are by exact name.
+   * Names are kept in registration order (within the library, the link order
+   * of its files); lookups are by exact name.
    */
   template <class Base, class... Args>
   class Registry
@@ -94,12 +94,12 @@ namespace anvil
       return p;
     }
 
-    /// "a: doc a; b: doc b" for the selecting parameter's help.
+    /// "'a': doc a 'b': doc b" for the selecting parameter's help.
     std::string documentation(const std::string &separator = " ") const
     {
       std::string d;
       for (const auto &e : entries)
-        d += (d.empty() ? "" : separator) + e.name + ": " + e.documentation;
+        d += (d.empty() ? "" : separator) + "'" + e.name + "': " + e.documentation;
       return d;
     }
 

@@ -52,7 +52,7 @@ namespace anvil
     const auto &registry = HardeningLawRegistry::instance();
     prm.enter_subsection("Hardening");
     prm.declare_entry("Model", "linear", Patterns::Selection(registry.names_pattern()),
-                      "Yield stress sigma_v(eps, T): " + registry.documentation("; "));
+                      "Yield stress sigma_v(eps, T): " + registry.documentation(" "));
     prm.declare_entry("Softened parameters", "all",
                       Patterns::MultipleSelection("all|none|initial yield stress|hardening modulus|"
                                                   "saturation stress|strength coefficient"),
