@@ -8,6 +8,10 @@
 //     own dissipation and thermoelastic effect within the step), which couples
 //     through d(dT_ad)/d(strain), for every model and both heat-capacity
 //     conventions, with a strong coupling (tau = 9 K beta^2 T/(rho c) ~ 0.4).
+// The tabulated cases (issue 13) put table kinks at 347 and 398 K: the
+// increment 345 -> 350 K and the dsigma/dT check (293 -> 400 K) cross them,
+// so the trapezoidal thermal strain and every T-derivative are exercised on
+// both sides of a kink (the central differences stay inside one segment).
 // Prints analytic and finite-difference values and fails above 1e-6 relative.
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/symmetric_tensor.h>
@@ -137,6 +141,15 @@ int main()
     " set Thermal expansion = 1.2e-5\n set Reference temperature = 293\n"
     " subsection Modulus temperature factor\n set Model = linear\n set Softening = 4e-4\n end\n"
     "end\n";
+  // Piecewise linear E(T) (through g) and beta(T) with kinks at 347 and 398 K.
+  const std::string tabulated_elastic =
+    "subsection Elasticity\n set Young's modulus = 70000\n set Poisson's ratio = 0.33\n"
+    " set Thermal expansion = 1.2e-5\n set Reference temperature = 293\n"
+    " subsection Modulus temperature factor\n set Model = table\n"
+    " set Table = 250 : 1.02, 293 : 1, 347 : 0.95, 398 : 0.85, 600 : 0.6\n end\n"
+    " subsection Thermal expansion temperature factor\n set Model = table\n"
+    " set Table = 250 : 0.95, 293 : 1, 347 : 1.1, 398 : 1.05, 600 : 1.3\n end\n"
+    "end\n";
   const std::vector<Case> cases = {
     {"hypoelastic", "set Model = hypoelastic\n" + elastic, 0},
     {"J2 linear hardening",
@@ -166,6 +179,36 @@ int main()
        " set Softening = 1e-3\n end\n subsection n\n set Model = linear\n set Value = 1.5\n"
        " set Softening = 2e-4\n end\n subsection m\n set Model = linear\n set Value = 3\n"
        " set Softening = -5e-4\n end\n set Strain exponent = 0.3\n set Strain reference = 0.1\nend\n",
+     1},
+    {"J2, every parameter tabulated in T (E, beta, sigma_0, h)",
+     "set Model = J2\n" + tabulated_elastic +
+       "subsection Hardening\n set Model = temperature linear\n"
+       " subsection Yield stress of T\n set Model = table\n"
+       " set Table = 250 : 160, 293 : 150, 347 : 120, 398 : 70, 600 : 20\n end\n"
+       " subsection Hardening modulus of T\n set Model = table\n"
+       " set Table = 250 : 1100, 293 : 1000, 347 : 600, 398 : 900, 600 : 100\n end\nend\n",
+     1},
+    {"Perzyna, tabulated eta(T), n(T), m(T), sigma_0(T), h(T)",
+     "set Model = Perzyna\n" + tabulated_elastic +
+       "subsection Hardening\n set Model = temperature linear\n"
+       " subsection Yield stress of T\n set Model = table\n"
+       " set Table = 250 : 160, 293 : 150, 347 : 120, 398 : 70, 600 : 20\n end\n"
+       " subsection Hardening modulus of T\n set Model = table\n"
+       " set Table = 250 : 1100, 293 : 1000, 347 : 600, 398 : 900, 600 : 100\n end\nend\n"
+       "subsection Viscosity\n subsection Eta\n set Model = table\n"
+       " set Table = 250 : 60, 293 : 50, 347 : 80, 398 : 30, 600 : 10\n end\n"
+       " subsection n\n set Model = table\n set Table = 250 : 1.5, 293 : 1.5, 347 : 1.2, 398 : 1.8, 600 : 1\n end\n"
+       " subsection m\n set Model = table\n set Table = 250 : 3, 293 : 3, 347 : 4, 398 : 2.5, 600 : 5\n end\n"
+       "end\n",
+     1},
+    {"Perzyna, eta(T) and m(T) as expressions with a Range",
+     "set Model = Perzyna\n" + tabulated_elastic +
+       "subsection Hardening\n set Model = linear\n set Initial yield stress = 100\n"
+       " set Hardening modulus = 500\nend\n"
+       "subsection Viscosity\n subsection Eta\n set Model = expression\n"
+       " set Expression = 50*exp(-(T-293)/200)\n set Range = 200, 1000\n end\n"
+       " subsection m\n set Model = expression\n set Expression = 2 + 0.01*(T-293)\n"
+       " set Range = 200, 1000\n end\nend\n",
      1},
   };
   double worst = 0;

@@ -37,6 +37,10 @@ namespace anvil
     TemperatureLaw::declare_parameters(prm, "1",
                                        "dimensionless factor g(T) on K and G, g(T_ref) = 1");
     prm.leave_subsection();
+    prm.enter_subsection("Thermal expansion temperature factor");
+    TemperatureLaw::declare_parameters(prm, "1",
+                                       "dimensionless factor f(T) on beta: beta(T) = beta f(T)");
+    prm.leave_subsection();
   }
 
   void ElasticLaw::parse_parameters(ParameterHandler &prm, const Scene &scene, const std::string &path)
@@ -53,12 +57,17 @@ namespace anvil
     G0                    = 3. * K0 * (1. - 2. * nu) / (2. * (1. + nu));
     density               = prm.get_double("Density");
     heat_capacity         = prm.get_double("Heat capacity");
-    thermal_expansion     = prm.get_double("Thermal expansion");
+    beta0                 = prm.get_double("Thermal expansion");
     capacity_at_constant_volume = prm.get("Heat capacity at") == "constant volume";
     reference_temperature = prm.get_double("Reference temperature");
     taylor_quinney        = prm.get_double("Taylor-Quinney coefficient");
     prm.enter_subsection("Modulus temperature factor");
     factor.parse_parameters(prm, scene, path + "/Modulus temperature factor", reference_temperature);
+    factor.require_above(scene, 0, true, "the modulus factor g");
+    prm.leave_subsection();
+    prm.enter_subsection("Thermal expansion temperature factor");
+    beta_factor.parse_parameters(prm, scene, path + "/Thermal expansion temperature factor",
+                                 reference_temperature);
     prm.leave_subsection();
   }
 

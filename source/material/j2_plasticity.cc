@@ -331,7 +331,10 @@ namespace anvil
       const ElasticLaw &el   = model.elastic;
       const double      K    = el.bulk_modulus(T);
       const double      G    = el.shear_modulus(T);
-      const double      beta = el.thermal_expansion;
+      // Thermal strain over the step and its T-derivative (β(T), eq. 19).
+      const double      eth  = el.thermal_strain(T, dT);
+      const double      deth = el.thermal_strain_derivative(T, dT);
+      const double      beta = el.thermal_expansion(T);
       if (!(G > 0 && K > 0))
         throw MaterialPointError(
           "the elastic moduli are not positive at T = " + std::to_string(T) +
@@ -361,7 +364,7 @@ namespace anvil
       const double *dstrain = inc.strain_increment.begin_raw();
       double        de[6];
       for (unsigned int c = 0; c < 6; ++c)
-        de[c] = dstrain[c] - (c < 3 ? beta * dT : 0.);
+        de[c] = dstrain[c] - (c < 3 ? eth : 0.);
       const double tr_de   = de[0] + de[1] + de[2];
       const double mean_de = tr_de / 3;
       for (unsigned int c = 0; c < 6; ++c)
@@ -466,7 +469,7 @@ namespace anvil
             }
           const double                g = el.relative_modulus_derivative(T);
           const SymmetricTensor<2, 3> dtrial =
-            g * (K * tr_de * I + 2 * G * deviator(de_t)) - 3 * K * beta * I;
+            g * (K * tr_de * I + 2 * G * deviator(de_t)) - 3 * K * deth * I;
           SymmetricTensor<2, 3> ds = dtrial;
           if (dp > 0)
             {
@@ -499,7 +502,7 @@ namespace anvil
       // Reversible volume change that heats or cools (doc/thermodynamics.md):
       // with c at constant stress, the stress-producing part tr(Δε − βΔT I);
       // with c at constant volume (the seed's eq. 8 and 22), all of tr Δε.
-      const double tr_rev = el.capacity_at_constant_volume ? tr_de + 3 * beta * dT : tr_de;
+      const double tr_rev = el.capacity_at_constant_volume ? tr_de + 3 * eth : tr_de;
       // Sources per current volume, capacity per reference volume (ρ₀c/J per current volume).
       const double rho_c  = el.density * el.heat_capacity / inc.volume_ratio;
       response.plastic_work_rate        = work / dt;

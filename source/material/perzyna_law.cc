@@ -50,12 +50,11 @@ namespace anvil
     strain_exponent  = prm.get_double("Strain exponent");
     prm.leave_subsection();
     enabled = true;
-    if (eta.reference() < 0)
-      scene.fail(p + "/Eta/Value", "= " + std::to_string(eta.reference()) + ": expected eta >= 0");
-    if (!(n.reference() > 0))
-      scene.fail(p + "/n/Value", "= " + std::to_string(n.reference()) + ": expected n > 0");
-    if (!(m.reference() > 0))
-      scene.fail(p + "/m/Value", "= " + std::to_string(m.reference()) + ": expected m > 0");
+    // Every tabulated (or sampled) value, not only the reference: eq. (14)
+    // needs eta >= 0 and n, m > 0 at every temperature the run may reach.
+    eta.require_above(scene, 0, false, "eta");
+    n.require_above(scene, 0, true, "n");
+    m.require_above(scene, 0, true, "m");
     if (!(strain_reference > 0))
       scene.fail(p + "/Strain reference", "must be > 0");
   }

@@ -11,7 +11,7 @@ namespace anvil
 
   /**
    * Isotropic thermo-elasticity of a material point (seed eq. 9, 10, 19):
-   * K(T), G(T), linear thermal expansion β and the thermal and Taylor–Quinney
+   * K(T), G(T), linear thermal expansion β(T) and the thermal and Taylor–Quinney
    * data a material point needs for its dissipation and adiabatic heating.
    *
    * K(T) = K₀ g(T), G(T) = G₀ g(T) with g a TemperatureLaw (constant by
@@ -37,9 +37,26 @@ namespace anvil
     /// H(T) = K δ⊗δ + 2G (I − ⅓ δ⊗δ), eq. (10).
     dealii::SymmetricTensor<4, 3> elasticity(double T) const;
 
+    /// β(T) = β₀ f(T), eq. (19), and the thermal strain over a step from
+    /// T − ΔT to T by the trapezoidal rule, ½(β(T − ΔT) + β(T)) ΔT (exact for
+    /// constant and linear β), with its derivative in T at fixed Tₙ = T − ΔT.
+    double thermal_expansion(double T) const { return beta0 * beta_factor.value(T); }
+    double thermal_strain(double T, double dT) const
+    {
+      if (beta_factor.is_constant())
+        return beta0 * beta_factor.value(T) * dT;
+      return 0.5 * (thermal_expansion(T - dT) + thermal_expansion(T)) * dT;
+    }
+    double thermal_strain_derivative(double T, double dT) const
+    {
+      if (beta_factor.is_constant())
+        return beta0 * beta_factor.value(T);
+      return 0.5 * (thermal_expansion(T - dT) + thermal_expansion(T)) +
+             0.5 * beta0 * beta_factor.derivative(T) * dT;
+    }
+
     double density            = 7.8e-9; // t/mm³
     double heat_capacity      = 4.6e8;  // mm²/(s² K)
-    double thermal_expansion  = 0;      // 1/K (β, eq. 19)
     double reference_temperature = 293; // K: where the moduli are K₀, G₀
     double taylor_quinney     = 0.9;    // χ
     /// c is at constant volume (the seed's c_v, eq. 8; Ẇthel from all of
@@ -48,7 +65,7 @@ namespace anvil
     bool capacity_at_constant_volume = false;
 
   private:
-    double         K0 = 0, G0 = 0;
-    TemperatureLaw factor;
+    double         K0 = 0, G0 = 0, beta0 = 0;
+    TemperatureLaw factor, beta_factor;
   };
 } // namespace anvil
