@@ -15,37 +15,18 @@ namespace anvil
    * conductance, heat flux and pair index, written with the solution fields.
    */
   template <int dim>
-  class ContactFields : public Postprocessor<dim>
+  class ContactFields : public ScheduledFieldOutput<dim>
   {
   public:
+    ContactFields()
+      : ScheduledFieldOutput<dim>("contact.pvd")
+    {}
     bool applies(const SceneContents<dim> &c) const override { return !c.contact->empty(); }
-    void parse_parameters(ParameterHandler &prm, Scene &, const SceneContents<dim> &) override
-    {
-      schedule.parse_parameters(prm);
-    }
-    void accepted(const SimulationState<dim> &s, const StepReport<dim> *) override
-    {
-      if (schedule.due(s))
-        write(s);
-    }
-    void finish(const SimulationState<dim> &s, const bool failed) override
-    {
-      if (failed)
-        write(s);
-    }
-    void save(std::map<std::string, std::string> &entries) const override
-    {
-      schedule.save("contact.pvd", entries);
-    }
-    void load(const std::map<std::string, std::string> &entries) override
-    {
-      schedule.load("contact.pvd", entries);
-    }
 
   private:
     static constexpr unsigned int n_fields = 8;
 
-    void write(const SimulationState<dim> &s)
+    void write(const SimulationState<dim> &s) override
     {
       std::vector<double> local;
       for (const auto &o : s.physics.contact_problem().node_outputs())
@@ -64,7 +45,7 @@ namespace anvil
             all.insert(all.end(), part.begin(), part.end());
           write_vtu(s.output_directory + "/fields/" + name, all);
         }
-      schedule.record(s.time, "fields/" + name, s.output_directory + "/contact.pvd", s.is_root());
+      this->schedule.record(s.time, "fields/" + name, s.output_directory + "/contact.pvd", s.is_root());
     }
 
     static void write_vtu(const std::string &filename, const std::vector<double> &all)
@@ -102,7 +83,6 @@ namespace anvil
       vtu << "</PointData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
     }
 
-    FieldSchedule schedule;
   };
 
   ANVIL_REGISTER_POSTPROCESSOR(ContactFields, "contact fields",

@@ -13,36 +13,16 @@ namespace anvil
    * a user opens in ParaView.
    */
   template <int dim>
-  class Fields : public Postprocessor<dim>
+  class Fields : public ScheduledFieldOutput<dim>
   {
   public:
+    Fields()
+      : ScheduledFieldOutput<dim>("fields.pvd")
+    {}
     static void declare_parameters(ParameterHandler &prm) { FieldSchedule::declare_parameters(prm); }
-    void parse_parameters(ParameterHandler &prm, Scene &, const SceneContents<dim> &) override
-    {
-      schedule.parse_parameters(prm);
-    }
-
-    void accepted(const SimulationState<dim> &s, const StepReport<dim> *) override
-    {
-      if (schedule.due(s))
-        write(s);
-    }
-    void finish(const SimulationState<dim> &s, const bool failed) override
-    {
-      if (failed)
-        write(s);
-    }
-    void save(std::map<std::string, std::string> &entries) const override
-    {
-      schedule.save("fields.pvd", entries);
-    }
-    void load(const std::map<std::string, std::string> &entries) override
-    {
-      schedule.load("fields.pvd", entries);
-    }
 
   private:
-    void write(const SimulationState<dim> &s)
+    void write(const SimulationState<dim> &s) override
     {
       const auto  *mechanical = s.physics.mechanics();
       const auto  *thermal    = s.physics.heat();
@@ -89,10 +69,9 @@ namespace anvil
       data_out.set_flags(flags);
       const std::string name = data_out.write_vtu_with_pvtu_record(
         s.output_directory + "/fields/", "solution", s.step, s.communicator, 5);
-      schedule.record(s.time, "fields/" + name, s.output_directory + "/solution.pvd", s.is_root());
+      this->schedule.record(s.time, "fields/" + name, s.output_directory + "/solution.pvd", s.is_root());
     }
 
-    FieldSchedule                               schedule;
     typename MechanicalProblem<dim>::CellFields cell_fields; // alive while data_out writes
   };
 

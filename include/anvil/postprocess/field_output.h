@@ -39,4 +39,48 @@ namespace anvil
     unsigned int                                interval = 1;
     std::vector<std::pair<double, std::string>> records;
   };
+
+  /**
+   * An output of fields on the schedule: written at t = 0, every Field
+   * interval steps, at the end and, after an unrecoverable failure, with the
+   * last converged state; its .pvd record (named @p key) goes through
+   * checkpoints. A concrete output implements write().
+   */
+  template <int dim>
+  class ScheduledFieldOutput : public Postprocessor<dim>
+  {
+  public:
+    explicit ScheduledFieldOutput(const std::string &key)
+      : key(key)
+    {}
+    void parse_parameters(dealii::ParameterHandler &prm, Scene &, const SceneContents<dim> &) override
+    {
+      schedule.parse_parameters(prm);
+    }
+    void accepted(const SimulationState<dim> &s, const StepReport<dim> *) override
+    {
+      if (schedule.due(s))
+        write(s);
+    }
+    void finish(const SimulationState<dim> &s, const bool failed) override
+    {
+      if (failed)
+        write(s);
+    }
+    void save(std::map<std::string, std::string> &entries) const override
+    {
+      schedule.save(key, entries);
+    }
+    void load(const std::map<std::string, std::string> &entries) override
+    {
+      schedule.load(key, entries);
+    }
+
+  protected:
+    virtual void write(const SimulationState<dim> &s) = 0;
+    FieldSchedule schedule;
+
+  private:
+    const std::string key;
+  };
 } // namespace anvil
