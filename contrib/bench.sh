@@ -197,6 +197,38 @@ print("two blocks (prm/two_blocks.prm), one process: %.2f s wall (seed 18.33 s),
                                       s["newton_iterations"] / s["steps"], s["heat"]["arkode_steps_per_step"],
                                       q["delta_T_upper"], q["delta_T_lower"]))
 PY
+# The seed's tube impact, case 3 (prm/tube_impact.prm, issue 12): wall time on
+# one core and on two processes, steps, cut-backs, Newton iterations, the
+# phases (contact search and evaluation run inside Mechanics: assembly and
+# residual), beside the seed's 199 steps / 755 iterations / 251 s (target
+# <= 10 s on one core). --small: the first 0.5 ms only.
+tube_sets=(--set "Output/Field interval=0" --set "Output/Verbosity=quiet")
+if [ "${1:-}" = "--small" ]; then tube_sets+=(--set "Time/End time=5e-4"); fi
+"$ANVIL_BUILD/anvil" "$ANVIL_ROOT/prm/tube_impact.prm" --set "Output/Directory=$out/tube_np1" "${tube_sets[@]}" \
+  || echo "tube_impact.prm: anvil exited with status $?"
+mpirun -np 2 --oversubscribe "$ANVIL_BUILD/anvil" "$ANVIL_ROOT/prm/tube_impact.prm" \
+  --set "Output/Directory=$out/tube_np2" "${tube_sets[@]}" || echo "tube_impact.prm, np = 2: anvil exited with status $?"
+python3 - "$out" <<'PY'
+import csv, json, os, sys
+out = sys.argv[1]
+for np in (1, 2):
+    d = "%s/tube_np%d" % (out, np)
+    if not os.path.exists(d + "/summary.json"):
+        print("tube impact np = %d: no summary.json" % np)
+        continue
+    s = json.load(open(d + "/summary.json"))
+    w = s["wall_time_per_phase"]
+    rows = list(csv.DictReader(open(d + "/reactions.csv")))
+    t = [float(r["time"]) for r in rows]
+    F = [-float(r["top_Fy"]) for r in rows]
+    W = sum(0.5 * (F[i] + F[i - 1]) * (t[i] - t[i - 1]) for i in range(1, len(t)))
+    print("tube impact case 3 (prm/tube_impact.prm), np = %d: %.1f s wall (seed 251 s, target <= 10 s), %d steps "
+          "(seed 199), %d cut-backs, %d Newton iterations (seed 556 + 199 thermal), mean drive force %.2f kN; "
+          "assembly %.1f s, residual %.1f s (both with the contact search and evaluation), linear solve %.1f s; "
+          "energy balance %.2g" % (np, s["wall_time"], s["steps"], s["cut_backs"], s["newton_iterations"],
+                                   W / t[-1] / 1000, w.get("Mechanics: assembly", 0), w.get("Mechanics: residual", 0),
+                                   w.get("Mechanics: linear solve", 0), s["energy"]["balance_error"]))
+PY
 # The parts refactor (issue 10): every shipped scene before and after, and the
 # run time of the regression layer (tests/regression.py, ctest -L regression).
 python3 "$ANVIL_ROOT/contrib/bench/compare_walltimes.py" "$ANVIL_BUILD"

@@ -15,7 +15,8 @@ to a few ten percent; it must not be below it (the section must yield) and
 the base force right after impact must be capped near it (elastic impedance
 rho c v A = 54 kN is not reached: the section yields first).
 
-The full crush (3.27 ms) of the three cases is not yet a test (doc/tube_impact.md).
+The full crush (3.27 ms) of the three cases: tests/tube_crush.py; np = 2 and a
+restart mid-crush: tests/tube_parallel.py (both `long`; doc/tube_impact.md).
 """
 import math
 import sys
