@@ -9,10 +9,16 @@ namespace anvil
 
   namespace
   {
-    /// σᵥ = σ₀ + h ε̄ + (σ∞ − σ₀)(1 − e^{−δ ε̄}) (Simo & Miehe 1992): Voce with a linear term.
+    /// σᵥ = σ₀ + h ε̄ + (σ∞ − σ₀)(1 − e^{−δ ε̄}) (Simo & Miehe 1992): Voce with a
+    /// linear term. Voce (below) is this law with h = 0: adding the zero term is
+    /// exact, so it gives Voce's numbers bit for bit.
     class SaturationHardening : public HardeningLaw
     {
     public:
+      explicit SaturationHardening(const bool linear_term = true)
+        : linear_term(linear_term)
+      {}
+
       static void declare_parameters(ParameterHandler &prm)
       {
         declare_common_entry(prm, "Initial yield stress");
@@ -24,14 +30,16 @@ namespace anvil
       void parse_parameters(ParameterHandler &prm, const Scene &scene, const std::string &path) override
       {
         sigma0         = prm.get_double("Initial yield stress");
-        h              = prm.get_double("Hardening modulus");
+        h              = linear_term ? prm.get_double("Hardening modulus") : 0.;
         sigma_inf      = prm.get_double("Saturation stress");
         delta          = prm.get_double("Saturation exponent");
         soft_sigma0    = softened("initial yield stress");
         soft_h         = softened("hardening modulus");
         soft_sigma_inf = softened("saturation stress");
         if (!(sigma0 > 0))
-          scene.fail(path + "/Initial yield stress", "must be > 0 MPa for the saturation model");
+          scene.fail(path + "/Initial yield stress",
+                     std::string("must be > 0 MPa for the ") + (linear_term ? "saturation" : "voce") +
+                       " model");
         if (!(sigma_inf >= sigma0))
           scene.fail(path + "/Saturation stress", "must be >= Initial yield stress");
       }
@@ -58,8 +66,24 @@ namespace anvil
       }
 
     private:
-      double sigma0 = 0, h = 0, sigma_inf = 0, delta = 0;
-      bool   soft_sigma0 = true, soft_h = true, soft_sigma_inf = true;
+      const bool linear_term;
+      double     sigma0 = 0, h = 0, sigma_inf = 0, delta = 0;
+      bool       soft_sigma0 = true, soft_h = true, soft_sigma_inf = true;
+    };
+
+    /// σᵥ = σ₀ + (σ∞ − σ₀)(1 − e^{−δ ε̄}) (Voce 1948).
+    class VoceHardening : public SaturationHardening
+    {
+    public:
+      VoceHardening()
+        : SaturationHardening(false)
+      {}
+      static void declare_parameters(ParameterHandler &prm)
+      {
+        declare_common_entry(prm, "Initial yield stress");
+        declare_common_entry(prm, "Saturation stress");
+        declare_common_entry(prm, "Saturation exponent");
+      }
     };
   } // namespace
 } // namespace anvil
@@ -68,3 +92,6 @@ ANVIL_REGISTER_HARDENING_LAW(anvil::SaturationHardening, "saturation",
                              "(Simo-Miehe) s0 + h eps + (s_inf - s0)(1 - exp(-delta eps)) "
                              "(Initial yield stress, Hardening modulus, Saturation stress, Saturation "
                              "exponent)")
+ANVIL_REGISTER_HARDENING_LAW(anvil::VoceHardening, "voce",
+                             "s0 + (s_inf - s0)(1 - exp(-delta eps)) (Initial yield stress s0, "
+                             "Saturation stress s_inf, Saturation exponent delta)")
