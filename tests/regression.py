@@ -58,6 +58,9 @@ CASES = {
         "prm/necking_bar_thermal.prm", ["Physics/Coupling=isothermal split"], note="isothermal split"),
     "necking_bar_thermal_staggered": scene(
         "prm/necking_bar_thermal.prm", ["Physics/Coupling=iterated staggered"], note="iterated staggered"),
+    "necking_bar_thermal_monolithic": scene(
+        "prm/necking_bar_thermal.prm", ["Physics/Coupling=monolithic", "Time/Time step=0.25"],
+        note="monolithic, 20 steps of 0.25 s"),
     # Without a temperature field the temperature quantities do not exist.
     "necking_bar_thermal_mechanical": scene(
         "prm/necking_bar_thermal.prm", ["Physics/Coupling=mechanical only",

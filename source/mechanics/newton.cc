@@ -320,6 +320,47 @@ namespace anvil
   }
 
   template <int dim>
+  bool MechanicalProblem<dim>::begin_step(const double time_old, const double time_new)
+  {
+    current_time_step = time_new - time_old;
+    current_time      = time_new;
+    if (contact)
+      {
+        contact->begin_step(time_old, time_new, old_solution);
+        if (contact->couplings_changed())
+          setup_matrix();
+      }
+    return predict(time_old, time_new, false);
+  }
+
+  template <int dim>
+  bool MechanicalProblem<dim>::predictor_update(unsigned int &linear_iterations)
+  {
+    if (!assemble(true, current_time))
+      return false;
+    TrilinosWrappers::MPI::Vector du(locally_owned_dofs, mpi_communicator);
+    linear_iterations += solve_linear_system(du);
+    active_constraints->distribute(du);
+    active_constraints = &constraints;
+    owned_solution += du;
+    solution = owned_solution;
+    return true;
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::set_displacement(const TrilinosWrappers::MPI::Vector &u_owned)
+  {
+    owned_solution = u_owned;
+    solution       = owned_solution;
+  }
+
+  template <int dim>
+  double MechanicalProblem<dim>::force_scale() const
+  {
+    return std::max({internal_force.l2_norm(), external_force.l2_norm(), inertia_force.l2_norm()});
+  }
+
+  template <int dim>
   void MechanicalProblem<dim>::revert_step()
   {
     for (auto &p : points.raw())
@@ -340,7 +381,11 @@ namespace anvil
   template bool   MechanicalProblem<dim>::predict(double, double, bool);                         \
   template double MechanicalProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &,     \
                                                       bool, double);                             \
-  template void   MechanicalProblem<dim>::revert_step();
+  template void   MechanicalProblem<dim>::revert_step();                                          \
+  template bool   MechanicalProblem<dim>::begin_step(double, double);                            \
+  template bool   MechanicalProblem<dim>::predictor_update(unsigned int &);                      \
+  template void   MechanicalProblem<dim>::set_displacement(const TrilinosWrappers::MPI::Vector &); \
+  template double MechanicalProblem<dim>::force_scale() const;
   ANVIL_INSTANTIATE(INSTANTIATE)
 #undef INSTANTIATE
 } // namespace anvil

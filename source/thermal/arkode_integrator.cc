@@ -78,7 +78,7 @@ namespace anvil
 
       SUNDIALS::ARKode<Vector>::AdditionalData data(t0, t1, span, span,
                                                     /*minimum_step_size*/ 1e-14 * span,
-                                                    settings.order,
+                                                    std::max(2u, settings.order),
                                                     settings.max_nonlinear_iterations,
                                                     /*implicit_function_is_linear*/ settings.linear,
                                                     /*implicit_function_is_time_independent*/ false,
@@ -149,6 +149,18 @@ namespace anvil
         });
       };
       ode.custom_setup = [&](void *mem) {
+        if (settings.order == 1)
+          {
+            // Backward Euler: one stage, A = b = c = 1 (fixed steps: no embedding).
+            ARKodeButcherTable table = ARKodeButcherTable_Alloc(1, SUNFALSE);
+            table->q       = 1;
+            table->p       = 0;
+            table->A[0][0] = 1;
+            table->b[0]    = 1;
+            table->c[0]    = 1;
+            ARKStepSetTables(mem, 1, 0, table, nullptr);
+            ARKodeButcherTable_Free(table);
+          }
         ARKStepSetMaxNumSteps(mem, settings.max_internal_steps);
         ARKStepSetInterpolantType(mem, ARK_INTERP_LAGRANGE);
         ARKStepSetStopTime(mem, t1);

@@ -40,7 +40,7 @@ namespace anvil
 
     struct IntegratorSettings
     {
-      unsigned int order                    = 3; // DIRK: 2, 3, 4 or 5
+      unsigned int order                    = 3; // DIRK: 2, 3, 4 or 5; 1: backward Euler
       bool         linear                   = false; // f linear in y: one Newton iteration per stage
       double       relative_tolerance       = 1e-6;
       double       absolute_tolerance       = 1e-6;

@@ -141,10 +141,12 @@ namespace anvil
                       "empty: none (the mechanics' dissipation is added separately).");
     prm.enter_subsection("Time integration");
     prm.declare_entry("Method", "DIRK order 3",
-                      Patterns::Selection("DIRK order 2|DIRK order 3|DIRK order 4|DIRK order 5"),
+                      Patterns::Selection("backward Euler|DIRK order 2|DIRK order 3|DIRK order 4|DIRK order 5"),
                       "ARKode's implicit diagonally implicit Runge-Kutta method of that order "
                       "(SUNDIALS' default table: SDIRK-2-1-2, ARK324L2SA-DIRK-4-2-3, SDIRK-5-3-4, "
-                      "ARK548L2SA-DIRK-8-4-5).");
+                      "ARK548L2SA-DIRK-8-4-5); backward Euler (one stage, no error estimate: "
+                      "needs a Fixed step size) is the method of Physics/Coupling = monolithic, "
+                      "for comparisons with it.");
     prm.declare_entry("Relative tolerance", "1e-6", Patterns::Double(0),
                       "ARKode's relative local error tolerance (dimensionless).");
     prm.declare_entry("Absolute tolerance", "1e-6", Patterns::Double(0),
@@ -179,7 +181,7 @@ namespace anvil
     polynomial_degree   = prm.get_integer("Polynomial degree");
     source              = trim(prm.get("Source"));
     prm.enter_subsection("Time integration");
-    order                    = prm.get("Method").back() - '0';
+    order = prm.get("Method") == "backward Euler" ? 1 : prm.get("Method").back() - '0';
     relative_tolerance       = prm.get_double("Relative tolerance");
     absolute_tolerance       = prm.get_double("Absolute tolerance");
     fixed_step_size          = prm.get_double("Fixed step size");
@@ -195,6 +197,10 @@ namespace anvil
     parse_expression<dim>(initial_temperature, scene, "Heat/Initial temperature");
     if (!source.empty())
       parse_expression<dim>(source, scene, "Heat/Source");
+    if (order == 1 && !(fixed_step_size > 0))
+      scene.fail("Heat/Time integration/Method",
+                 "is backward Euler, which has no error estimate: give a Fixed step size > 0 "
+                 "(larger than the time step: one step per mechanical step)");
     if (!(relative_tolerance > 0) && !(absolute_tolerance > 0))
       scene.fail("Heat/Time integration/Relative tolerance",
                  "and the absolute tolerance are both 0: at least one must be > 0");
@@ -440,6 +446,13 @@ namespace anvil
     solution            = y;
     temperature_ghosted = solution;
 
+    step_balance(time_old, time_new);
+    return stats;
+  }
+
+  template <int dim>
+  void ThermalProblem<dim>::step_balance(const double time_old, const double time_new)
+  {
     // Heat balance of the step (trapezoidal in time).
     const double dt    = time_new - time_old;
     const auto   q_old = boundary_flows(time_old, old_temperature_ghosted);
@@ -451,7 +464,70 @@ namespace anvil
     step_source = 0.5 * dt * (source_power(time_old) + source_power(time_new));
     step_dirichlet_heat_in = heat_content(temperature_ghosted) -
                              heat_content(old_temperature_ghosted) - step_source - boundary_sum;
-    return stats;
+  }
+
+  template <int dim>
+  void ThermalProblem<dim>::begin_step(const double time_old, const double time_new)
+  {
+    step_length       = time_new - time_old;
+    linear_iterations = 0;
+    if (!operators_current)
+      {
+        assemble_mass();
+        operators_current = true;
+      }
+  }
+
+  template <int dim>
+  void ThermalProblem<dim>::implicit_residual(const double t, const Vector &T, Vector &f)
+  {
+    if (!operators_current)
+      {
+        assemble_mass();
+        operators_current = true;
+      }
+    // The mechanics' sources change with every iterate: never the cached ones.
+    sources_current = false;
+    f.reinit(locally_owned_dofs, mpi_communicator);
+    assemble(t, T, &f, nullptr);
+  }
+
+  template <int dim>
+  const TrilinosWrappers::SparseMatrix &ThermalProblem<dim>::implicit_tangent(const double t,
+                                                                             const Vector &T)
+  {
+    assemble(t, T, nullptr, &tangent_matrix);
+    tangent_current = true;
+    return tangent_matrix;
+  }
+
+  template <int dim>
+  void ThermalProblem<dim>::mass_vmult(Vector &Mv, const Vector &v) const
+  {
+    if (parameters.lumped_mass)
+      {
+        Mv = v;
+        Mv.scale(lumped_mass);
+      }
+    else
+      mass_matrix.vmult(Mv, v);
+  }
+
+  template <int dim>
+  void ThermalProblem<dim>::set_temperature(const Vector &T_owned)
+  {
+    Vector y(T_owned);
+    hanging.distribute(y);
+    solution            = y;
+    temperature_ghosted = solution;
+  }
+
+  template <int dim>
+  void ThermalProblem<dim>::accept_temperature(const Vector &T_owned, const double time_old,
+                                               const double time_new)
+  {
+    set_temperature(T_owned);
+    step_balance(time_old, time_new);
   }
 
   template <int dim>

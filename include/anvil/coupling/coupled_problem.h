@@ -37,6 +37,9 @@ namespace anvil
     double       staggered_change = 0, contraction = 0; // K, ratio of successive changes
     double       mechanical_wall = 0, thermal_wall = 0; // s
     double       time_step = 0;                         // s, of the attempt
+    // Monolithic Newton: |R_T| (mJ) and max |δT| (K) per iteration, beside the
+    // mechanics' residuals in mechanical_solves.
+    std::vector<double> thermal_residuals, thermal_increments;
 
     unsigned int mechanics_iterations() const
     {

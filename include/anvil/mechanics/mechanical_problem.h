@@ -240,6 +240,30 @@ namespace anvil
     const dealii::TrilinosWrappers::SparseMatrix &get_system_matrix() const { return system_matrix; }
     /// −R (constrained entries 0) of the last assembly.
     const dealii::TrilinosWrappers::MPI::Vector &get_system_rhs() const { return system_rhs; }
+
+    /**
+     * The pieces of solve_step() for a scheme that runs its own Newton loop
+     * over more fields (coupling/monolithic.cc). begin_step(): the contact's
+     * step, the predictor and its constraints; true if the boundary values
+     * jump. predictor_update(): one Newton update of the mechanics alone with
+     * the predictor constraints (carries the jump into the body, as the first
+     * iteration of solve_step() does); afterwards the homogeneous constraints
+     * apply. False (and failure_message()) if an element inverted.
+     */
+    bool begin_step(double time_old, double time_new);
+    bool predictor_update(unsigned int &linear_iterations);
+    /// Set the iterate (owned, constraints already satisfied) and its ghosts.
+    void set_displacement(const dealii::TrilinosWrappers::MPI::Vector &u_owned);
+    const dealii::TrilinosWrappers::MPI::Vector &owned_displacement() const { return owned_solution; }
+    const dealii::TrilinosWrappers::MPI::Vector &owned_old_displacement() const
+    {
+      return owned_old_solution;
+    }
+    /// The homogeneous constraints of Newton updates (supports, axis, hanging nodes).
+    const dealii::AffineConstraints<double> &update_constraints() const { return constraints; }
+    /// Force scale of the residual test: |f_int|, |f_ext|, |M a| of the last assembly.
+    double force_scale() const;
+    std::string failure_message() const { return material_failure_message(); }
     std::size_t memory_consumption() const;
 
   private:

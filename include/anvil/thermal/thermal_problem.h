@@ -217,6 +217,34 @@ namespace anvil
      */
     AssembledSystem assemble_system(double t, const Vector &T, double gamma, Vector &f);
 
+    /**
+     * For a scheme that solves T inside its own Newton loop with backward
+     * Euler, M (T − Tₙ) = Δt f(T, tₙ₊₁) (coupling/monolithic.cc):
+     * begin_step() sets the step, implicit_residual() gives f(T, t) with the
+     * sources and the configuration as they are now (nothing cached), the
+     * mass M stays that of the reference configuration (assemble_mass), and
+     * accept_temperature() takes the converged T as this step's solution
+     * with its heat balance, as solve_step() would.
+     */
+    void begin_step(double time_old, double time_new);
+    void implicit_residual(double t, const Vector &T, Vector &f);
+    /// A = ∂(K T − F)/∂T at @p T (constrained rows empty), as assemble_system.
+    const dealii::TrilinosWrappers::SparseMatrix &implicit_tangent(double t, const Vector &T);
+    /// M v (lumped if Heat/Linear solver asks for it).
+    void mass_vmult(Vector &Mv, const Vector &v) const;
+    const dealii::TrilinosWrappers::SparseMatrix &get_mass_matrix() const { return mass_matrix; }
+    bool uses_lumped_mass() const { return parameters.lumped_mass; }
+    const Vector &lumped_mass_vector() const { return lumped_mass; }
+    /// Set the current temperature (owned; hanging nodes are distributed).
+    void set_temperature(const Vector &T_owned);
+    void accept_temperature(const Vector &T_owned, double time_old, double time_new);
+    /// Dirichlet values g(t) into the owned @p y.
+    void apply_dirichlet_values(const double t, Vector &y) const { apply_dirichlet(t, y); }
+    /// Hanging nodes and Temperature boundaries (homogeneous).
+    const dealii::AffineConstraints<double> &get_constraints() const { return constraints; }
+    const dealii::AffineConstraints<double> &hanging_constraints() const { return hanging; }
+    const Vector &owned_old_temperature() const { return old_solution; }
+
     /// Advance T from the committed state at @p time_old to @p time_new.
     Statistics solve_step(double time_old, double time_new);
     /// Accept the last solve_step (T becomes the committed state, heat flows accumulate).
@@ -302,6 +330,8 @@ namespace anvil
     unsigned int solve_newton(Vector &x, const Vector &b, double tolerance);
     unsigned int solve_mass(Vector &x, const Vector &b, double tolerance);
     void   setup_newton(double gamma);
+    /// Boundary, source and Dirichlet heat of the step just solved (trapezoidal in time).
+    void   step_balance(double time_old, double time_new);
 
     MPI_Comm                                                 mpi_communicator;
     const dealii::parallel::distributed::Triangulation<dim> &triangulation;
