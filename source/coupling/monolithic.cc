@@ -158,6 +158,9 @@ namespace anvil
     unsigned int solve(const Vector &b_u, const Vector &b_T, Vector &du, Vector &dT);
     double       heat_residual(const Vector &T, const Vector &f, double dt, Vector &b_T) const;
     void         print_tangent_check(double t, double dt, const Vector &u, const Vector &T);
+    double       line_search(double t, double dt, const Vector &u, const Vector &T,
+                             const Vector &du, const Vector &dT, double scale_u, double scale_T,
+                             double merit_0);
 
     double       tolerance = 1e-8;
     unsigned int max_iterations = 15, direct_limit = 200000;
@@ -551,6 +554,18 @@ namespace anvil
     r_u[1] *= 0.5;
     r_T[1] -= r_T[0];
     r_T[1] *= 0.5;
+    // The cross blocks' share of J v: what the check would miss without them.
+    Vector Kv_u(u), Kv_T(T);
+    this->problem->mechanics()->get_system_matrix().vmult(Kv_u, v_u);
+    heat_block.vmult(Kv_T, v_T);
+    Kv_u -= Jv_u;
+    Kv_T -= Jv_T;
+    for (const auto i : owned_u)
+      if (c_u.is_constrained(i))
+        Kv_u(i) = 0;
+    Kv_u.compress(VectorOperation::insert);
+    const double share_u = Kv_u.l2_norm() / std::max(Jv_u.l2_norm(), 1e-300);
+    const double share_T = Kv_T.l2_norm() / std::max(Jv_T.l2_norm(), 1e-300);
     const double n_u_fd = r_u[1].l2_norm(), n_T_fd = r_T[1].l2_norm();
     r_u[1] -= Jv_u;
     r_T[1] -= Jv_T;
@@ -558,7 +573,38 @@ namespace anvil
     const double e_T = r_T[1].l2_norm() / std::max(n_T_fd, 1e-300);
     this->problem->log() << "    coupled tangent check: |J v - FD| / |FD| = "
                          << std::max(e_u, e_T) << " (displacement rows " << e_u
-                         << ", temperature rows " << e_T << ")" << std::endl;
+                         << ", temperature rows " << e_T << "); cross-block share of J v: "
+                         << share_u << " (displacement rows), " << share_T << " (temperature rows)"
+                         << std::endl;
+  }
+
+  template <int dim>
+  double Monolithic<dim>::line_search(const double t, const double dt, const Vector &u,
+                                      const Vector &T, const Vector &du, const Vector &dT,
+                                      const double scale_u, const double scale_T,
+                                      const double merit_0)
+  {
+    // Backtracking on the normalised residual max(|R_u|/scale_u, |R_T|/scale_T)
+    // (the convergence test's measure): halve until it decreases, at most 6
+    // times. Not the mechanics' energy line search: from the first iterate
+    // (the mechanics converged at Tₙ) δu · R_u is zero. Past the load maximum
+    // the full coupled step can overshoot the neck.
+    double alpha = 1;
+    Vector ut(u), Tt(T), b(u), f(T), b_T(T);
+    for (unsigned int ls = 0; ls < 6; ++ls, alpha *= 0.5)
+      {
+        ut = u;
+        ut.add(alpha, du);
+        Tt = T;
+        Tt.add(alpha, dT);
+        if (!evaluate(t, ut, Tt, b, f))
+          continue;
+        heat_residual(Tt, f, dt, b_T);
+        const double merit = std::max(b.l2_norm() / scale_u, b_T.l2_norm() / scale_T);
+        if (std::isfinite(merit) && merit < merit_0)
+          break;
+      }
+    return std::max(alpha, 1. / 64);
   }
 
   template <int dim>
@@ -579,16 +625,23 @@ namespace anvil
       return r.fail(why);
     };
 
-    const bool has_jump = mech.begin_step(t_old, t_new);
     heat.begin_step(t_old, t_new);
     Vector T(heat.owned_old_temperature());
     heat.apply_dirichlet_values(t_new, T);
+    // The first iterate: the mechanics converged alone at Tₙ (the isothermal
+    // split's mechanical phase, with its line search): past the load maximum
+    // the coupled Newton from the bare predictor needs many damped steps.
+    // If that fails, the predictor with the boundary values' jump carried
+    // into the body (the first iteration of the mechanics' own Newton).
+    if (!p.solve_mechanics(t_old, t_new, false, r))
+      {
+        mech.revert_step();
+        const bool has_jump = mech.begin_step(t_old, t_new);
+        if (has_jump && !mech.predictor_update(m.linear_iterations))
+          return fail(mech.failure_message());
+      }
     heat.set_temperature(T);
     p.point_temperatures_from_heat_field();
-    // The boundary values' jump carried into the body by the mechanics at Tₙ
-    // (what the first iteration of the mechanics' own Newton does).
-    if (has_jump && !mech.predictor_update(m.linear_iterations))
-      return fail(mech.failure_message());
     Vector              u(mech.owned_displacement()), b_u(u), du(u), f(T), b_T(T), dT(T);
     std::vector<double> error;
     double              r_u0 = 0, r_T0 = 0, heat_floor = 0;
@@ -610,16 +663,16 @@ namespace anvil
           }
         // Scales: the forces of the step; the heat the step stores (or, at
         // the first iterate, the heat that arrives in it).
-        // A step that stores almost no heat is measured against the heat
-        // content's round-off (|M T| 1e-6: a millionth of it).
+        // Below 1e-12 of the heat content |M T| the heat residual is round-off
+        // (a step that stores almost no heat cannot be measured against itself).
         if (it == 0)
           {
             Vector MT(T);
             heat.mass_vmult(MT, T);
-            heat_floor = 1e-6 * MT.l2_norm();
+            heat_floor = 1e-12 * MT.l2_norm();
           }
         const double scale_u = std::max(mech.force_scale(), r_u0);
-        const double scale_T = std::max({change, r_T0, heat_floor});
+        const double scale_T = std::max(change, r_T0);
         const double e_u     = r_u / std::max(scale_u, 1e-300);
         const double e_T     = r_T / std::max(scale_T, 1e-300);
         error.push_back(std::max(e_u, e_T));
@@ -639,7 +692,7 @@ namespace anvil
                                dT.linfty_norm() <= 1e-12 * T.linfty_norm();
         const bool converged =
           ((e_u <= tolerance || r_u <= p.mechanics_parameters().absolute_residual_tolerance) &&
-           (e_T <= tolerance || r_T == 0)) ||
+           (e_T <= tolerance || r_T <= heat_floor)) ||
           stagnated;
         line << (converged ? "  converged" : "");
         p.log() << line.str() << std::endl;
@@ -663,11 +716,15 @@ namespace anvil
           {
             return fail("the linear solver failed on the monolithic system");
           }
-        u += du;
-        T += dT;
-        m.increments.push_back(du.l2_norm());
-        r.thermal_increments.push_back(dT.linfty_norm());
-        m.line_search_steps.push_back(1);
+        const double alpha = error.back() > 1e-4 ?
+                               line_search(t_new, dt, u, T, du, dT, std::max(scale_u, 1e-300),
+                                           std::max(scale_T, 1e-300), error.back()) :
+                               1.;
+        u.add(alpha, du);
+        T.add(alpha, dT);
+        m.increments.push_back(alpha * du.l2_norm());
+        r.thermal_increments.push_back(alpha * dT.linfty_norm());
+        m.line_search_steps.push_back(alpha);
         m.iterations = it + 1;
       }
     m.converged = true;

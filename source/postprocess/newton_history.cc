@@ -35,7 +35,10 @@ namespace anvil
                                        k < m.increments.size() ? m.increments[k] : 0.,
                                        k < m.line_search_steps.size() ? m.line_search_steps[k] : 1.,
                                        m.converged ? 1. : 0.};
-            if (both_fields)
+            // The heat columns belong to the monolithic solve (the last one).
+            if (both_fields && &m != &r.mechanical_solves.back())
+              row.insert(row.end(), {0., 0.});
+            else if (both_fields)
               {
                 const auto &rT = r.thermal_residuals, &dT = r.thermal_increments;
                 row.push_back(k < rT.size() ? rT[k] : 0.);

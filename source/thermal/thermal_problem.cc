@@ -471,7 +471,7 @@ namespace anvil
   {
     step_length       = time_new - time_old;
     linear_iterations = 0;
-    if (!operators_current)
+    if (!operators_current || mass_diagonal.size() == 0)
       {
         assemble_mass();
         operators_current = true;
@@ -481,11 +481,7 @@ namespace anvil
   template <int dim>
   void ThermalProblem<dim>::implicit_residual(const double t, const Vector &T, Vector &f)
   {
-    if (!operators_current)
-      {
-        assemble_mass();
-        operators_current = true;
-      }
+    // M (reference configuration) and its diagonal were assembled by begin_step().
     // The mechanics' sources change with every iterate: never the cached ones.
     sources_current = false;
     f.reinit(locally_owned_dofs, mpi_communicator);
