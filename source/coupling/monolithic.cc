@@ -680,7 +680,11 @@ namespace anvil
         line << "    monolithic " << std::setw(2) << it << ": |R_u| " << std::scientific
              << std::setprecision(2) << r_u << " N (" << e_u << " of " << scale_u << "), |R_T| "
              << r_T << " mJ (" << e_T << " of " << scale_T << ")";
+        // Contraction order log(e_k/e_k-1)/log(e_k-1/e_k-2), and e_k/e_k-1²,
+        // bounded when the convergence is quadratic.
         const std::size_t k = error.size() - 1;
+        if (k >= 1)
+          line << ", e/e_prev^2 " << error[k] / (error[k - 1] * error[k - 1]);
         if (k >= 2 && error[k] < error[k - 1] && error[k - 1] < error[k - 2])
           line << ", order " << std::fixed << std::setprecision(2)
                << std::log(error[k] / error[k - 1]) / std::log(error[k - 1] / error[k - 2]);
