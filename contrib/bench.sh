@@ -183,6 +183,12 @@ print("  steps %d / %d, Newton iterations %d / %d" % (s[cases[0]]["steps"], s[ca
       s[cases[0]]["newton_iterations"], s[cases[1]]["newton_iterations"]))
 print("  (begin_step, the tributary areas and the candidate search of each step, runs outside the timers)")
 PY
+# The coupling schemes side by side (issue 11, contrib/bench/monolithic.py): per
+# scheme (isothermal, adiabatic, iterated staggered, monolithic) on the thermal
+# necking bar and the two-block scene, wall time, steps, Newton and linear
+# iterations, and the error against the tightest monolithic run.
+ANVIL_EXECUTABLE="$ANVIL_BUILD/anvil" ANVIL_BENCH_DIR="$out" python3 "$ANVIL_ROOT/contrib/bench/monolithic.py" \
+  $([ "${1:-}" = "--small" ] && echo --small) || echo "contrib/bench/monolithic.py failed"
 # The seed's two-block scene (prm/two_blocks.prm): wall time on one core
 # (target <= 2 s against the seed's 18.33 s of 2002), steps, Newton iterations.
 "$ANVIL_BUILD/anvil" "$ANVIL_ROOT/prm/two_blocks.prm" --set "Output/Directory=$out/two_blocks" \
