@@ -1,5 +1,8 @@
 // The monolithic thermo-mechanical Newton: displacement and temperature solved
-// together in every step (doc/monolithic.md).
+// together in every step (doc/monolithic.md). Long because issue 11 asks for
+// the scheme as one file in coupling/ (the test of the parts' shape): its
+// Jacobian by coloured differences, block solver and tangent check serve it
+// alone. Splitting candidates: the colouring and BlockAMG (generic).
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/lac/solver_control.h>

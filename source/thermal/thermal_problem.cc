@@ -481,7 +481,6 @@ namespace anvil
   template <int dim>
   void ThermalProblem<dim>::implicit_residual(const double t, const Vector &T, Vector &f)
   {
-    // M (reference configuration) and its diagonal were assembled by begin_step().
     // The mechanics' sources change with every iterate: never the cached ones.
     sources_current = false;
     f.reinit(locally_owned_dofs, mpi_communicator);
