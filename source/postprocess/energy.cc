@@ -16,16 +16,18 @@ namespace anvil
   public:
     void start(const SimulationState<dim> &s, const bool append) override
     {
-      std::vector<std::string> columns = {"step", "time"};
+      // Works in N mm, heat in mJ (the same unit; per mm of depth in plane strain).
+      std::vector<std::string> columns = {"step", "time [s]"};
       if (s.physics.mechanics())
-        columns.insert(columns.end(), {"external_work", "internal_work", "kinetic_energy",
-                                       "plastic_work", "elastic_energy", "stress_work",
-                                       "balance_error"});
+        columns.insert(columns.end(),
+                       {"external_work [N mm]", "internal_work [N mm]", "kinetic_energy [N mm]",
+                        "plastic_work [N mm]", "elastic_energy [N mm]", "stress_work [N mm]",
+                        "balance_error [-]"});
       if (s.physics.heat())
         columns.insert(columns.end(),
-                       {"heat_content", "heat_content_change", "boundary_heat_in", "source_heat",
-                        "plastic_heat", "thermoelastic_heat", "contact_heat",
-                        "heat_balance_error"});
+                       {"heat_content [mJ]", "heat_content_change [mJ]", "boundary_heat_in [mJ]",
+                        "source_heat [mJ]", "plastic_heat [mJ]", "thermoelastic_heat [mJ]",
+                        "contact_heat [mJ]", "heat_balance_error [mJ]"});
       csv.open(s.output_directory + "/energy.csv", columns, s.is_root(), append, s.time);
     }
 

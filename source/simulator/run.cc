@@ -41,6 +41,20 @@ namespace anvil
                                          scene.contact_tool_names());
     }
 
+    // --help: a scene without contact still shows what a pair's and a
+    // tool's subsection hold, as Contact/<pair> and Contact/<tool>.
+    template <int dim>
+    void declare_with_templates(ParameterHandler &prm, const Scene &scene)
+    {
+      auto pairs = scene.contact_pair_names();
+      auto tools = scene.contact_tool_names();
+      if (pairs.empty())
+        pairs = {"<pair>"};
+      if (tools.empty())
+        tools = {"<tool>"};
+      Simulator<dim>::declare_parameters(prm, scene.body_names(), pairs, tools);
+    }
+
     // Returns why the run stopped early, or "" (the Simulator is gone by then).
     template <int dim>
     std::string run_scene(Scene &scene, const bool check_only)
@@ -202,11 +216,24 @@ namespace anvil
         if (help || print)
           {
             Scene scene = filename.empty() ? Scene() : Scene(filename, overrides);
-            read_scene(scene);
+            if (help)
+              {
+                scene.read_shape();
+                if (scene.dimension() == 2)
+                  scene.read(declare_with_templates<2>);
+                else
+                  scene.read(declare_with_templates<3>);
+              }
+            else
+              read_scene(scene);
             if (root)
               {
                 if (help)
-                  std::cout << usage << "\nParameters (with defaults, patterns and documentation):\n\n";
+                  std::cout << usage
+                            << "\nParameters (with defaults, patterns and documentation). "
+                               "Contact/<pair> and Contact/<tool> stand for the subsection of "
+                               "each name listed in Contact/Pairs and Contact/Tools; Bodies/body "
+                               "for each name in Bodies/Names:\n\n";
                 scene.parameters().print_parameters(std::cout, help ? ParameterHandler::Text
                                                                     : ParameterHandler::PRM);
               }
