@@ -54,6 +54,20 @@ status, err, _ = anvil([os.path.join(SOURCE_DIR, "prm", "two_blocks.prm"), "--ch
                         "--set", "Time/Time step=abc"])
 check(status == 2 and "did you mean" not in err, "a bad value of a declared entry is not a misspelling")
 
+# Thermal only needs no elastic constants (prm/heat_half_space.prm gives none); with the
+# mechanics the missing modulus is bad input, named.
+status, err, _ = anvil([os.path.join(SOURCE_DIR, "prm", "heat_half_space.prm"), "--check"])
+check(status == 0, "a thermal-only scene without elastic constants is valid")
+status, err, _ = anvil([os.path.join(SOURCE_DIR, "prm", "heat_half_space.prm"), "--check",
+                        "--set", "Physics/Coupling=isothermal split"])
+print("  " + err)
+check(status == 2 and "'Bodies/strip/Material/Elasticity/Young's modulus' and 'Bulk modulus' are "
+      "both 0" in err, "with the mechanics, the missing modulus is named")
+status, err, _ = anvil([os.path.join(SOURCE_DIR, "prm", "necking_bar.prm"), "--check",
+                        "--set", "Geometry/Body name=bar"])
+print("  " + err)
+check(status == 2 and "Geometry/Body name" in err, "an unlisted mesh body points to the entry naming it")
+
 status, _, help_text = anvil(["--help"])
 pair = help_text[help_text.find("subsection <pair>"):]
 tool = help_text[help_text.find("subsection <tool>"):]

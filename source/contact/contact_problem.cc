@@ -243,8 +243,13 @@ namespace anvil
   double ContactProblem<dim>::tributary_area(const unsigned int node, const Surface &surface,
                                              const std::vector<Point<dim>> &x) const
   {
-    // 2D: half of each adjacent segment (times 2πr when axisymmetric);
-    // 3D: a quarter of each adjacent facet (diagonals' cross product / 2).
+    // 2D: half of each adjacent segment; axisymmetric: the node's share of
+    // the ring each segment sweeps, the integral of its shape function,
+    // 2 pi L (2 r_node + r_other) / 6 — the share a uniform pressure's
+    // nodal forces have, so a uniform pressure gives a uniform penetration.
+    // Inside a uniform face that is 2 pi r L as before; the node on the axis
+    // gets pi L^2 / 3, not 2 pi r L/2 = 0 (no force: it sank through the tool).
+    // The areas add up to the face's. 3D: a quarter of each adjacent facet.
     double area = 0;
     for (const auto f : node_faces[node])
       {
@@ -252,15 +257,23 @@ namespace anvil
         if (!surface.has(faces[f]))
           continue;
         if constexpr (dim == 2)
-          area += 0.5 * x[nodes[0]].distance(x[nodes[1]]);
+          {
+            const double length = x[nodes[0]].distance(x[nodes[1]]);
+            if (!axisymmetric)
+              area += 0.5 * length;
+            else
+              {
+                const double r     = std::abs(x[node][0]);
+                const double other = std::abs(x[nodes[0] == node ? nodes[1] : nodes[0]][0]);
+                area += 2 * numbers::PI * length * (2 * r + other) / 6;
+              }
+          }
         else
           {
             const Tensor<1, dim> d1 = x[nodes[3]] - x[nodes[0]], d2 = x[nodes[2]] - x[nodes[1]];
             area += 0.25 * 0.5 * cross_product_3d(d1, d2).norm();
           }
       }
-    if (axisymmetric)
-      area *= 2 * numbers::PI * x[node][0];
     return area;
   }
 

@@ -217,6 +217,9 @@ namespace anvil
         std::string       rest = message.substr(close + 1);
         scene.fail(path, trim(rest));
       }
+    if (!(model->bulk_modulus() > 0))
+      scene.fail("Material/Elasticity/Young's modulus",
+                 "and 'Bulk modulus' are both 0: expected one of them > 0");
 
     prm.enter_subsection("Path");
     control   = prm.get("Control") == "strain" ? Control::strain : Control::deformation_gradient;

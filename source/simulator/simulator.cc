@@ -85,7 +85,10 @@ namespace anvil
       if (std::find(scene.body_names().begin(), scene.body_names().end(), name) ==
           scene.body_names().end())
         scene.fail("Bodies/Names", "does not list the mesh body '" + name +
-                                     "' (the mesh has: " + geometry.list_body_names() + ")");
+                                     "' (the mesh has: " + geometry.list_body_names() +
+                                     "; a generated mesh's body is named by Geometry/Body "
+                                     "name, blocks by Geometry/Blocks, a gmsh mesh by its "
+                                     "physical names)");
 
     coupling = prm.get({"Physics"}, "Coupling");
     scheme   = CouplingSchemeRegistry<dim>::instance().create(coupling);
