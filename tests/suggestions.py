@@ -45,6 +45,11 @@ status, err, _ = anvil([os.path.join(SOURCE_DIR, "prm", "two_blocks.prm"), "--ch
 print("  " + err)
 check(status == 2 and "--set 'Time/End tme=1'" in err and "did you mean 'End time'?" in err,
       "--set with a misspelled entry suggests 'End time'")
+status, err, _ = anvil([os.path.join(SOURCE_DIR, "prm", "two_blocks.prm"), "--check",
+                        "--set", "Time/Qwxyz=1"])
+print("  " + err)
+check(status == 2 and "did you mean" not in err and "declared here: " in err and "'End time'" in err,
+      "nothing near: no guess, the entries of the subsection are listed")
 status, err, _ = anvil([os.path.join(SOURCE_DIR, "prm", "cantilever.prm"), "--check",
                         "--set", "Bodies/body/Material/Model=J2"])
 print("  " + err)

@@ -164,11 +164,14 @@ namespace anvil
     // the word's length (at least 2 edits); else the list when it is short.
     std::string suggestion(const std::string &wrong, const std::vector<std::string> &names)
     {
-      std::size_t best = std::max<std::size_t>(2, wrong.size() / 3) + 1;
+      const std::size_t        limit = std::max<std::size_t>(2, wrong.size() / 3);
+      std::size_t              best  = limit + 1;
       std::vector<std::string> nearest;
       for (const auto &n : names)
         {
           const std::size_t d = distance(wrong, n);
+          if (d > limit)
+            continue;
           if (d < best)
             {
               best = d;
@@ -295,9 +298,20 @@ namespace anvil
                     suggestion(w[1].str(), declared_names(p, stack, false));
             else if (std::regex_search(text, w, section_re))
               {
-                const std::string name = trim(w[1].str());
-                msg = at + "no subsection '" + name + "' in " + section_name(stack) +
-                      suggestion(name, declared_names(p, stack, true));
+                // deal.II names the path joined by '.': keep the last part.
+                std::string name = trim(w[1].str());
+                std::string path;
+                for (const auto &part : stack)
+                  path += part + "/";
+                for (const auto &part : stack)
+                  if (name.rfind(part + ".", 0) == 0)
+                    name = name.substr(part.size() + 1);
+                const std::string hint =
+                  stack.size() == 1 && stack[0] == "Bodies" ?
+                    " (a body's subsection needs its name in 'Bodies/Names')" :
+                    "";
+                msg = at + "no subsection '" + path + name + "'" +
+                      suggestion(name, declared_names(p, stack, true)) + hint;
               }
           }
         else
