@@ -145,7 +145,9 @@ def plot(runs, x, ys, output, labels=None, title=None, logy=False):
             ylabels.append(ylabel)
             line = name if len(ys) == 1 else (bare(y) if len(runs) == 1 else
                                               "%s: %s" % (name, bare(y)))
-            ax.plot(xs, yv, marker="." if len(xs) < 40 else None, label=line)
+            # Dashes after the first curve: equal curves (a balance) stay visible.
+            style = ["-", "--", ":", "-."][len(ylabels) - 1 if len(runs) == 1 else k % 4]
+            ax.plot(xs, yv, style, marker="." if len(xs) < 40 else None, label=line)
     ax.set_xlabel(xlabel)
     # One unit for all the curves: "a, b [N]"; else each with its own.
     names = list(dict.fromkeys(l.split(" [")[0] for l in ylabels))
