@@ -4,7 +4,7 @@
 set -euo pipefail
 ANVIL_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 ANVIL_BUILD="${ANVIL_BUILD:-$ANVIL_ROOT/build}"
-packages=(libdeal.ii-dev gmsh numdiff cmake make g++ openmpi-bin ccache python3)
+packages=(libdeal.ii-dev gmsh numdiff cmake make g++ openmpi-bin ccache python3 python3-numpy python3-matplotlib)
 
 missing=()
 for p in "${packages[@]}"; do
