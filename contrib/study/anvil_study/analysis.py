@@ -15,7 +15,7 @@ def evaluate(expr, variables, what):
     """A Python arithmetic expression (math functions, the ladder values by
     ladder name, t for histories); raises ValueError with a readable text."""
     try:
-        return float(eval(expr, {"__builtins__": {}}, dict(MATH, **variables)))
+        return float(eval(expr, dict(MATH, __builtins__={}, **variables)))
     except Exception as e:   # any error of the user's expression
         raise ValueError("%s: cannot evaluate '%s' (%s)" % (what, expr, e))
 

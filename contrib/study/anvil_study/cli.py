@@ -44,15 +44,12 @@ def cli_overrides(sets, path):
     return out
 
 
-def check_input(study, anvil, cli_sets):
+def check_input(study, anvil, cli_sets, extra=()):
     """Everything that can be checked before a run: the scene with the base
     overrides, each ladder level (anvil --check), the quantities of interest."""
     base = list(study.sets) + cli_sets
-    err = check_scene(anvil, study.scene, [(p, v) for p, v in base if "{" not in v])
-    if err:
-        raise StudyInputError("%s: the scene with the study's Set and --set entries: %s" % (study.path, err))
-    # Level k of every ladder in one --check (shorter ladders repeat their last level).
-    n = max([len(l) for l in study.ladders] + [0])
+    # The base entries and level k of every ladder in one --check (shorter ladders repeat their last level).
+    n = max([len(l) for l in study.ladders] + [1])
     for k in range(n):
         levels = [min(k, len(l) - 1) for l in study.ladders]
         variables = A.variables_of(study.ladders, levels)
@@ -61,11 +58,12 @@ def check_input(study, anvil, cli_sets):
             b = [(p, A.substitute(v, variables, p)) for p, v in base]
         except ValueError as e:
             raise StudyInputError("%s: %s" % (study.path, e))
-        err = check_scene(anvil, study.scene, b + ov)
+        ex = [(p, A.substitute(v, variables, p)) for p, v in extra]
+        err = check_scene(anvil, study.scene, b + ov + ex)
         if err:
             culprit = next((l for l in study.ladders for p, _ in l.entries if p in err), None)
             where = ("ladder '%s' (line %d), level %d" % (culprit.name, culprit.line, k + 1)) if culprit \
-                else "ladder level %d" % (k + 1)
+                else "the scene with the study's entries" + (" (ladder level %d)" % (k + 1) if study.ladders else "")
             raise StudyInputError("%s: %s: anvil --check: %s" % (study.path, where, err))
     if study.reference_type == "run":
         err = check_scene(anvil, study.scene, base + list(study.reference_run))
@@ -78,6 +76,11 @@ def check_input(study, anvil, cli_sets):
             raise StudyInputError("%s:%d: quantity '%s': the scene has no quantity of interest '%s' (it has: %s; "
                                   "or give a summary.json path like heat.balance_error)"
                                   % (study.path, q.line, q.name, q.key, ", ".join(names) or "none"))
+
+
+def _at(value, name, x):
+    """A Stability entry with the variable fixed (the ladder values stay free)."""
+    return value.replace("{", "{(lambda %s: " % name).replace("}", ")(%r)}" % x)
 
 
 def run_ladder(study, runner, cli_sets, out):
@@ -111,10 +114,13 @@ def main(argv):
             if args.repeats < 1:
                 raise StudyInputError("%s: --repeats %d: expected at least 1" % (args.study, args.repeats))
             study.repeats = args.repeats
+        extra = []
         if study.mode == "stability":
             from .stability import read_stability
             stab = read_stability(study)
-        check_input(study, args.anvil, cli_sets)
+            # The scene entries that follow the bisected variable, checked at the top of its range.
+            extra = [(p, _at(v, stab.variable, stab.hi)) for p, v in stab.entries]
+        check_input(study, args.anvil, cli_sets, extra)
     except StudyInputError as e:
         return fail(str(e))
     if args.check:
@@ -122,7 +128,8 @@ def main(argv):
         return 0
     out = args.output or study.output
     os.makedirs(out, exist_ok=True)
-    histories = [(q.file, q.key) for q in study.quantities if q.kind == "history"]
+    histories = [(q.file, q.key) for q in study.quantities if q.kind == "history"] + \
+        list(getattr(study, "histories", []))
     runner = Runner(args.anvil, study.scene, out, np=args.np or study.np,
                     jobs=args.jobs if args.jobs is not None else study.jobs, threads=study.threads,
                     timeout=study.timeout, repeats=study.repeats, histories=histories)

@@ -111,6 +111,17 @@ def _pyplot():
         return None
 
 
+def _plain_ticks(ax):
+    """Readable wall-time ticks when the runs span less than a decade."""
+    from matplotlib.ticker import NullFormatter, ScalarFormatter
+    lo, hi = ax.get_xlim()
+    if hi < 10 * lo:
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.xaxis.set_major_formatter(ScalarFormatter())
+        ax.set_xticks([lo * (hi / lo) ** (k / 4) for k in range(5)])
+        ax.set_xticklabels(["%.3g" % (lo * (hi / lo) ** (k / 4)) for k in range(5)])
+
+
 def plot_work_precision(study, rows, path):
     plt = _pyplot()
     if plt is None:
@@ -119,7 +130,7 @@ def plot_work_precision(study, rows, path):
     ok = [r for r in rows if r["status"] == "completed" and math.isfinite(r["error"]) and r["error"] > 0
           and not r["is_reference"]]
     for label, members in curves(study, rows).items():
-        pts = sorted([(r["wall"], r["error"]) for r in members if r in ok])
+        pts = [(r["wall"], r["error"]) for r in members if r in ok]    # in ladder order
         if pts:
             ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", label=label)
     front = [ok[i] for i in A.pareto([(r["wall"], r["error"]) for r in ok])]
@@ -130,6 +141,7 @@ def plot_work_precision(study, rows, path):
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("wall time per run (s, median of %d)" % study.repeats)
+    _plain_ticks(ax)
     ax.set_ylabel(("%s error of %s" % (study.error_kind, study.accuracy_quantity)) if study.accuracy_quantity
                   else "%s error (largest over the quantities)" % study.error_kind)
     ax.set_title("%s: work against precision" % study.name)
