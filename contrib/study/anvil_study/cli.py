@@ -59,6 +59,8 @@ def check_input(study, anvil, cli_sets, extra=()):
         except ValueError as e:
             raise StudyInputError("%s: %s" % (study.path, e))
         ex = [(p, A.substitute(v, variables, p)) for p, v in extra]
+        if k == 0:
+            first = b + ov + ex
         err = check_scene(anvil, study.scene, b + ov + ex)
         if err:
             culprit = next((l for l in study.ladders for p, _ in l.entries if p in err), None)
@@ -69,7 +71,7 @@ def check_input(study, anvil, cli_sets, extra=()):
         err = check_scene(anvil, study.scene, base + list(study.reference_run))
         if err:
             raise StudyInputError("%s: Reference/Run: anvil --check: %s" % (study.path, err))
-    qois = scene_parameters(anvil, study.scene, base).get("Output/Quantities of interest", "")
+    qois = scene_parameters(anvil, study.scene, first).get("Output/Quantities of interest", "")
     names = [strip_unit(x.split(":", 1)[0]) for x in qois.split(";") if ":" in x]
     for q in study.quantities:
         if q.kind == "summary" and "." not in q.key and strip_unit(q.key) not in names:

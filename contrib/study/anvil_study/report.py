@@ -13,7 +13,7 @@ def fmt(v):
     if v is None:
         return ""
     if isinstance(v, float):
-        return "nan" if math.isnan(v) else "%.10g" % v
+        return "nan" if math.isnan(v) else "%.17g" % v
     return str(v)
 
 

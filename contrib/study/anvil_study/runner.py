@@ -112,17 +112,20 @@ class Runner:
             start = time.perf_counter()
             timed_out = False
             with open(os.path.join(run_dir, "stdout.txt"), "w") as so, open(os.path.join(run_dir, "stderr.txt"), "w") as se:
-                p = subprocess.Popen(self.command(spec, out), stdout=so, stderr=se, env=env,
-                                     start_new_session=True)
+                # Same process group as the tool: stopping the study (Ctrl-C, a
+                # kill of its group) stops its runs too.
+                p = subprocess.Popen(self.command(spec, out), stdout=so, stderr=se, env=env)
                 try:
                     p.wait(timeout=self.timeout or None)
                 except subprocess.TimeoutExpired:
-                    os.killpg(p.pid, 9)
+                    p.kill()
                     p.wait()
                     timed_out = True
             walls.append(time.perf_counter() - start)
             with open(os.path.join(run_dir, "stdout.txt")) as so, open(os.path.join(run_dir, "stderr.txt")) as se:
                 status, reason = failure_reason(p.returncode, so.read(), se.read(), timed_out, self.timeout)
+            # Relative to the study folder: the same table wherever the study lives.
+            reason = reason.replace(out, os.path.join("runs", spec["key"], "out"))
             if status != "completed":
                 break   # a failed run is not timed again
         try:

@@ -1,0 +1,112 @@
+"""The study machinery (anvil --study) on tests/study/tool_checks.prm:
+
+ 1. a study killed mid-way (its whole process group, runs included) and
+    started again reuses the runs it had, runs the others and writes the same
+    table as an uninterrupted study (every column but the wall times); a third
+    start runs nothing and writes the same file byte for byte;
+ 2. a run that cannot complete is a row with status 'failed' and anvil's
+    reason, not a failure of the study;
+ 3. bad input (a ladder entry the scene does not have, a reference quantity
+    that does not exist, an empty ladder, paired ladders of different lengths,
+    a quantity of interest the scene lacks): one line naming the study file,
+    exit status 2, before any run (no runs folder).
+"""
+import csv
+import json
+import os
+import shutil
+import signal
+import subprocess
+import time
+
+from anvil_test import ANVIL, SOURCE_DIR, WORK_DIR, check, finish
+
+STUDY = os.path.join(SOURCE_DIR, "tests", "study", "tool_checks.prm")
+BASE = os.path.join(WORK_DIR, "output", "study_tool")
+shutil.rmtree(BASE, ignore_errors=True)
+os.makedirs(BASE)
+
+
+def study(path, out, extra=()):
+    return subprocess.run([ANVIL, "--study", path, "--output", out] + list(extra), capture_output=True, text=True)
+
+
+def table(out, drop=("wall_time_median [s]", "wall_time_spread", "peak_memory_MB")):
+    with open(os.path.join(out, "study.csv")) as f:
+        return [{k: v for k, v in r.items() if k not in drop} for r in csv.DictReader(f)]
+
+
+# 1. Uninterrupted, then killed after its first finished run and restarted.
+full = os.path.join(BASE, "full")
+p = study(STUDY, full)
+check(p.returncode == 0, "uninterrupted study exits with 0 (%d) %s" % (p.returncode, p.stderr.strip()))
+killed = os.path.join(BASE, "killed")
+proc = subprocess.Popen([ANVIL, "--study", STUDY, "--output", killed, "--jobs", "1"], stdout=subprocess.DEVNULL,
+                        stderr=subprocess.DEVNULL, start_new_session=True)
+runs = os.path.join(killed, "runs")
+deadline = time.time() + 120
+while time.time() < deadline:
+    done = [d for d in os.listdir(runs) if os.path.exists(os.path.join(runs, d, "record.json"))] \
+        if os.path.isdir(runs) else []
+    if done:
+        break
+    time.sleep(0.1)
+os.killpg(proc.pid, signal.SIGKILL)
+proc.wait()
+n_before = len([d for d in os.listdir(runs) if os.path.exists(os.path.join(runs, d, "record.json"))])
+check(0 < n_before < 4 and not os.path.exists(os.path.join(killed, "study.csv")),
+      "killed after %d of 4 runs, before writing its table" % n_before)
+p = study(STUDY, killed)
+with open(os.path.join(killed, "timing.json")) as f:
+    timing = json.load(f)
+print("  restart: %d run(s) reused, %d executed" % (timing["reused"], timing["executed"]))
+check(p.returncode == 0 and timing["reused"] == n_before and timing["executed"] == 4 - n_before,
+      "the restart reuses the %d finished run(s) and runs the other %d" % (n_before, 4 - n_before))
+check(table(killed) == table(full), "restarted table = uninterrupted table (all columns but wall time and memory)")
+with open(os.path.join(killed, "study.csv")) as f:
+    first = f.read()
+p = study(STUDY, killed)
+with open(os.path.join(killed, "study.csv")) as f:
+    again = f.read()
+with open(os.path.join(killed, "timing.json")) as f:
+    timing = json.load(f)
+check(timing["executed"] == 0 and again == first, "a third start runs nothing and writes the same file")
+
+# 2. Failed runs: the Newton limit of 1 at the minimum time step.
+rows = table(full)
+failed = [r for r in rows if r["newton"] == "1"]
+ok = [r for r in rows if r["newton"] == "15"]
+check(all(r["status"] == "failed" and "Newton did not converge" in r["reason"] for r in failed),
+      "runs with 1 Newton iteration: status failed, reason '%s'" % failed[0]["reason"])
+check(all(r["status"] == "completed" and r["reason"] == "" for r in ok), "the other runs completed")
+with open(os.path.join(full, "study.md")) as f:
+    md = f.read()
+section = md.split("## Runs that did not complete")[-1]
+check(section.count("Newton did not converge") == 2,
+      "study.md lists the 2 failed runs with their reason")
+
+# 3. Bad input.
+with open(STUDY) as f:
+    text = f.read().replace("relaxation.prm", os.path.join(SOURCE_DIR, "tests", "study", "relaxation.prm"))
+cases = [("ladder entry the scene lacks", text.replace("set Time/Time step = 0.1", "set Time/Tim step = 0.1"),
+          "Tim step"),
+         ("reference quantity that does not exist", text.replace("  set s = 300", "  set sigma = 300"), "sigma"),
+         ("empty ladder", text.replace("set Time/Time step = 0.1 | 0.05", "set Time/Time step ="), "empty"),
+         ("empty level", text.replace("0.1 | 0.05", "0.1 | | 0.05"), "empty"),
+         ("paired entries of different lengths",
+          text.replace("set Time/Time step = 0.1 | 0.05",
+                       "set Time/Time step = 0.1 | 0.05\n  set Time/End time = 1 | 2 | 3"), "levels"),
+         ("quantity of interest the scene lacks", text.replace("set s = summary", "set s = summary s_max"), "s_max"),
+         ("no reference", text[:text.index("subsection Reference")], "Reference")]
+for n, (what, body, word) in enumerate(cases):
+    path = os.path.join(BASE, "bad_%d.prm" % n)
+    with open(path, "w") as f:
+        f.write(body)
+    out = os.path.join(BASE, "bad_%d" % n)
+    p = study(path, out)
+    lines = [l for l in p.stderr.split("\n") if l.strip()]
+    print("  %s: %s" % (what, lines[0] if lines else ""))
+    check(p.returncode == 2 and len(lines) == 1 and path in lines[0] and word in lines[0]
+          and not os.path.exists(os.path.join(out, "runs")),
+          "%s: exit 2 (%d), one line naming the file and '%s', no run" % (what, p.returncode, word))
+finish()
