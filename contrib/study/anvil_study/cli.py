@@ -48,6 +48,16 @@ def check_input(study, anvil, cli_sets, extra=()):
     """Everything that can be checked before a run: the scene with the base
     overrides, each ladder level (anvil --check), the quantities of interest."""
     base = list(study.sets) + cli_sets
+    # Optional levels (a scheme this build may not have, e.g. 'monolithic'):
+    # dropped, with a note, when anvil --check rejects them.
+    for ladder in study.ladders:
+        for label in list(ladder.optional):
+            i = ladder.entries[0][1].index(label)
+            ov = [(p, v) for p, v in base if "{" not in v] + [(p, v) for p, v in ladder.overrides(i) if "{" not in v]
+            if check_scene(anvil, study.scene, ov):
+                print("anvil-study: note: ladder '%s': level '%s' is not available in this build, left out"
+                      % (ladder.name, label))
+                ladder.drop(i)
     # The base entries and level k of every ladder in one --check (shorter ladders repeat their last level).
     n = max([len(l) for l in study.ladders] + [1])
     for k in range(n):
@@ -123,6 +133,10 @@ def main(argv):
             # The scene entries that follow the bisected variable, checked at the top of its range.
             extra = [(p, _at(v, stab.variable, stab.hi)) for p, v in stab.entries]
         check_input(study, args.anvil, cli_sets, extra)
+        for name, entries in study.variants if study.mode == "physics cost" else []:
+            err = check_scene(args.anvil, study.scene, list(study.sets) + list(entries) + cli_sets)
+            if err:
+                raise StudyInputError("%s: Physics cost variant '%s': anvil --check: %s" % (study.path, name, err))
     except StudyInputError as e:
         return fail(str(e))
     if args.check:

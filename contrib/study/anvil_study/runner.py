@@ -26,7 +26,9 @@ def strip_unit(name):
 
 
 def run_key(scene, overrides, np):
-    text = json.dumps([os.path.abspath(scene), overrides, np])
+    # The last value of each entry wins (as in anvil), so the key is of the
+    # entries in sorted order: the same run reached two ways is one run.
+    text = json.dumps([os.path.abspath(scene), sorted(dict(overrides).items()), np])
     return hashlib.sha1(text.encode()).hexdigest()[:12]
 
 

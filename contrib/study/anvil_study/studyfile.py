@@ -72,8 +72,8 @@ def read_tree(path):
 class Ladder:
     """One ladder: scene entries stepped together (paired); ladders are crossed."""
 
-    def __init__(self, name, line, role, values, entries):
-        self.name, self.line, self.role = name, line, role
+    def __init__(self, name, line, role, values, entries, optional=()):
+        self.name, self.line, self.role, self.optional = name, line, role, list(optional)
         self.values = values          # numeric level per step (for orders and plots), or None
         self.entries = entries        # [(scene path, [value per level])]
 
@@ -84,6 +84,12 @@ class Ladder:
         if self.values is not None:
             return "%.6g" % self.values[i]
         return self.entries[0][1][i]
+
+    def drop(self, i):
+        """Remove level i (an optional level this build does not have)."""
+        if self.values is not None:
+            self.values = self.values[:i] + self.values[i + 1:]
+        self.entries = [(p, v[:i] + v[i + 1:]) for p, v in self.entries]
 
     def overrides(self, i):
         return [(path, values[i]) for path, values in self.entries]
@@ -136,9 +142,11 @@ def _ladder(node, path):
     name = node.name[len("Ladder"):].strip()
     if not name:
         raise StudyInputError("%s:%d: a ladder needs a name: 'subsection Ladder NAME'" % (path, node.line))
-    entries, role, values = [], None, None
+    entries, role, values, optional = [], None, None, []
     for key, (value, line) in node.entries.items():
-        if key == "Role":
+        if key == "Optional levels":
+            optional = [v.strip() for v in value.split("|") if v.strip()]
+        elif key == "Role":
             if value not in ROLES:
                 raise StudyInputError("%s:%d: ladder '%s': Role '%s' (expected one of: %s)"
                                       % (path, line, name, value, ", ".join(ROLES)))
@@ -152,8 +160,8 @@ def _ladder(node, path):
                                       "(expected values separated by '|')" % (path, line, name, key))
             entries.append((key, levels, line))
         else:
-            raise StudyInputError("%s:%d: ladder '%s': unknown entry '%s' (expected Role, Value or a scene "
-                                  "entry 'Section/Entry')" % (path, line, name, key))
+            raise StudyInputError("%s:%d: ladder '%s': unknown entry '%s' (expected Role, Value, Optional "
+                                  "levels or a scene entry 'Section/Entry')" % (path, line, name, key))
     if not entries:
         raise StudyInputError("%s:%d: ladder '%s' is empty (expected at least one scene entry "
                               "'set Section/Entry = v1 | v2 | ...')" % (path, node.line, name))
@@ -181,7 +189,11 @@ def _ladder(node, path):
     if role in ("time step", "mesh size") and values is None:
         raise StudyInputError("%s:%d: ladder '%s' (role %s) needs numeric levels: set Value = v1 | v2 | ..."
                               % (path, node.line, name, role))
-    return Ladder(name, node.line, role, values, [(k, v) for k, v, _ in entries])
+    for o in optional:
+        if o not in entries[0][1]:
+            raise StudyInputError("%s:%d: ladder '%s': optional level '%s' is not one of its levels (%s)"
+                                  % (path, node.line, name, o, " | ".join(entries[0][1])))
+    return Ladder(name, node.line, role, values, [(k, v) for k, v, _ in entries], optional)
 
 
 def _quantities(node, path):
