@@ -67,6 +67,9 @@ def evaluate_runs(study, specs, records, ref_record):
             if tuple(lv[k] for k in conv) == last:
                 finest[group_key(study, lv, conv)] = row
                 row["is_reference"] = True
+    if ref_record is not None:
+        for row in rows:    # the reference run is also a run of the ladders
+            row["is_reference"] = row["record"]["key"] == ref_record["key"]
     for row in rows:
         for q in study.quantities:
             row["errors"][q.name] = float("nan")

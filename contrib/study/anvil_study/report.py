@@ -130,7 +130,9 @@ def plot_work_precision(study, rows, path):
     ok = [r for r in rows if r["status"] == "completed" and math.isfinite(r["error"]) and r["error"] > 0
           and not r["is_reference"]]
     for label, members in curves(study, rows).items():
-        pts = [(r["wall"], r["error"]) for r in members if r in ok]    # in ladder order
+        pts = [(r["wall"], r["error"]) for r in members if r in ok]    # in ladder order (one axis)
+        if len(convergence_ladders(study)) > 1:
+            pts.sort()    # Δt and h together: by cost
         if pts:
             ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", label=label)
     front = [ok[i] for i in A.pareto([(r["wall"], r["error"]) for r in ok])]
