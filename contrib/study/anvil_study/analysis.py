@@ -130,8 +130,8 @@ def pareto(points):
     """Indices of the points (cost, error) no other point beats in both."""
     out = []
     for i, (c, e) in enumerate(points):
-        # Errors equal to 1e-9 (the same answer reached two ways) count as equal.
-        if not any((c2 <= c and e2 <= e * (1 + 1e-9)) and (c2 < c or e2 < e * (1 - 1e-9))
+        # Errors equal to 1e-6 (the same answer reached two ways, to a solver tolerance) count as equal.
+        if not any((c2 <= c and e2 <= e * (1 + 1e-6)) and (c2 < c or e2 < e * (1 - 1e-6))
                    for j, (c2, e2) in enumerate(points) if j != i):
             out.append(i)
     return sorted(out, key=lambda i: points[i][0])

@@ -54,7 +54,10 @@ def evaluate_runs(study, specs, records, ref_record):
         row["costs"] = {name: A.summary_value(rec.get("summary", {}), key) for name, key in COSTS}
         for q in study.quantities:
             row["values"][q.name] = A.quantity_value(rec, q) if rec["status"] == "completed" else None
-        if rec["status"] == "completed" and any(v is None for v in row["values"].values()):
+        bad = [n for n, v in row["values"].items() if isinstance(v, float) and not math.isfinite(v)]
+        if rec["status"] == "completed" and bad:
+            row["status"], row["reason"] = "unstable", "not finite: " + ", ".join(bad)
+        elif rec["status"] == "completed" and any(v is None for v in row["values"].values()):
             missing = [q.name for q in study.quantities if row["values"][q.name] is None]
             row["status"], row["reason"] = "error", "quantity not in the run's output: " + ", ".join(missing)
         rows.append(row)

@@ -238,8 +238,12 @@ def plot_stability(study, stab, points, path):
             else:
                 ax.plot(x, stab.lo, "v", color=color, ms=10)
         lim = [(x, p["estimate"]) for x, p in zip(xs, members) if p["state"] == "limit"]
-        ax.plot([q[0] for q in lim], [q[1] for q in lim], "o-", color=color, label=key + " (limit)")
-        ax.plot([], [], "^", color=color, label=key + ": stable up to the top of the range")
+        if lim:
+            ax.plot([q[0] for q in lim], [q[1] for q in lim], "o-", color=color, label=key + ": limit")
+        for state, marker, text in (("stable over the range", "^", "stable up to the top of the range"),
+                                    ("unstable over the range", "v", "unstable at the bottom of the range")):
+            if any(p["state"] == state for p in members):
+                ax.plot([], [], marker, color=color, label=key + ": " + text)
         pred = [(x, p["predicted"]) for x, p in zip(xs, members) if p["predicted"] is not None]
         if pred:
             ax.plot([q[0] for q in pred], [q[1] for q in pred], "x:", color=color, ms=12, label=key + ": predicted")
