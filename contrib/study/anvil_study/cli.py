@@ -3,6 +3,7 @@ study (doc/study.md). Exit status 0 done (runs that failed are reported in
 the table, they do not stop the study), 2 bad input (one line, before any run).
 """
 import argparse
+import concurrent.futures
 import json
 import os
 import sys
@@ -58,30 +59,35 @@ def check_input(study, anvil, cli_sets, extra=()):
                 print("anvil-study: note: ladder '%s': level '%s' is not available in this build, left out"
                       % (ladder.name, label))
                 ladder.drop(i)
-    # The base entries and level k of every ladder in one --check (shorter ladders repeat their last level).
+    # The base entries and level k of every ladder in one --check (shorter
+    # ladders repeat their last level); the checks, the reference run's and
+    # the reading of the scene's quantities go at once (they are start-ups).
     n = max([len(l) for l in study.ladders] + [1])
+    sets = []
     for k in range(n):
         levels = [min(k, len(l) - 1) for l in study.ladders]
         variables = A.variables_of(study.ladders, levels)
         try:
-            ov = A.overrides_of(study.ladders, levels, variables)
-            b = [(p, A.substitute(v, variables, p)) for p, v in base]
+            sets.append([(p, A.substitute(v, variables, p)) for p, v in base] +
+                        A.overrides_of(study.ladders, levels, variables) +
+                        [(p, A.substitute(v, variables, p)) for p, v in extra])
         except ValueError as e:
             raise StudyInputError("%s: %s" % (study.path, e))
-        ex = [(p, A.substitute(v, variables, p)) for p, v in extra]
-        if k == 0:
-            first = b + ov + ex
-        err = check_scene(anvil, study.scene, b + ov + ex)
-        if err:
-            culprit = next((l for l in study.ladders for p, _ in l.entries if p in err), None)
-            where = ("ladder '%s' (line %d), level %d" % (culprit.name, culprit.line, k + 1)) if culprit \
-                else "the scene with the study's entries" + (" (ladder level %d)" % (k + 1) if study.ladders else "")
-            raise StudyInputError("%s: %s: anvil --check: %s" % (study.path, where, err))
     if study.reference_type == "run":
-        err = check_scene(anvil, study.scene, base + list(study.reference_run))
-        if err:
+        sets.append(base + list(study.reference_run))
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(2, os.cpu_count() or 1)) as pool:
+        qois = pool.submit(scene_parameters, anvil, study.scene, sets[0])
+        errors = list(pool.map(lambda ov: check_scene(anvil, study.scene, ov), sets))
+        qois = qois.result().get("Output/Quantities of interest", "")
+    for k, err in enumerate(errors):
+        if not err:
+            continue
+        if k == n:
             raise StudyInputError("%s: Reference/Run: anvil --check: %s" % (study.path, err))
-    qois = scene_parameters(anvil, study.scene, first).get("Output/Quantities of interest", "")
+        culprit = next((l for l in study.ladders for p, _ in l.entries if p in err), None)
+        where = ("ladder '%s' (line %d), level %d" % (culprit.name, culprit.line, k + 1)) if culprit \
+            else "the scene with the study's entries" + (" (ladder level %d)" % (k + 1) if study.ladders else "")
+        raise StudyInputError("%s: %s: anvil --check: %s" % (study.path, where, err))
     names = [strip_unit(x.split(":", 1)[0]) for x in qois.split(";") if ":" in x]
     for q in study.quantities:
         if q.kind == "summary" and "." not in q.key and strip_unit(q.key) not in names:
@@ -139,6 +145,7 @@ def main(argv):
                 raise StudyInputError("%s: Physics cost variant '%s': anvil --check: %s" % (study.path, name, err))
     except StudyInputError as e:
         return fail(str(e))
+    checked = time.perf_counter()
     if args.check:
         print("anvil-study: %s is valid (%s study of %s)" % (args.study, study.mode, study.scene))
         return 0
@@ -165,6 +172,7 @@ def main(argv):
     print("anvil-study: %s: %d run(s) executed, %d reused; wall time %.2f s, sum of the runs %.2f s; wrote %s in %s"
           % (study.name, runner.executed, runner.reused, total, runner.run_wall, written, out))
     with open(os.path.join(out, "timing.json"), "w") as f:
-        json.dump({"study_wall": total, "runs_wall_sum": runner.run_wall, "executed": runner.executed,
+        json.dump({"study_wall": total, "check_wall": checked - started, "runs_phase_wall": runner.phase_wall,
+                   "runs_wall_sum": runner.run_wall, "executed": runner.executed,
                    "reused": runner.reused, "jobs": runner.jobs, "threads": runner.threads}, f)
     return 0

@@ -75,7 +75,7 @@ class Runner:
         self.threads = threads if threads > 0 else max(1, (os.cpu_count() or 1) // (self.jobs * np))
         self.histories = list(histories)     # [(file, column)] to keep from each run
         self.log, self.lock = log, threading.Lock()
-        self.executed, self.reused, self.run_wall = 0, 0, 0.0
+        self.executed, self.reused, self.run_wall, self.phase_wall = 0, 0, 0.0, 0.0
 
     def spec(self, overrides, label=""):
         return {"key": run_key(self.scene, overrides, self.np), "overrides": overrides, "label": label}
@@ -166,6 +166,7 @@ class Runner:
         if todo:
             self.say("running %d run(s) (%d already done), %d at once, %d process(es) x %d thread(s) each"
                      % (len(todo), len(records), min(self.jobs, len(todo)), self.np, self.threads))
+        start = time.perf_counter()
         with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, self.jobs)) as pool:
             futures = {pool.submit(self._execute, s): s for s in todo}
             for f in concurrent.futures.as_completed(futures):
@@ -176,6 +177,7 @@ class Runner:
                 self.say("  %-8s %6.2f s  %s%s" % (rec["status"], sum(rec["wall_times"]) / len(rec["wall_times"]),
                                                    s.get("label") or s["key"],
                                                    ("  (" + rec["reason"] + ")") if rec["reason"] else ""))
+        self.phase_wall += time.perf_counter() - start
         return [records[s["key"]] for s in specs]
 
     def say(self, text):
