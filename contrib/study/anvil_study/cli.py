@@ -17,7 +17,13 @@ from .studyfile import StudyInputError, read_study
 
 
 def parse_args(argv):
-    p = argparse.ArgumentParser(prog="anvil --study", description=__doc__.split("\n")[0])
+    p = argparse.ArgumentParser(prog="anvil --study", description="Run a study (doc/study.md): ladders of scene "
+                                "entries with work-precision tables and plots, stability maps, physics cost.")
+
+    def one_line(message):      # bad input: one line, exit 2 (argparse would print its usage too)
+        print("anvil-study: error: %s (see anvil --study -h)" % message, file=sys.stderr)
+        sys.exit(2)
+    p.error = one_line
     p.add_argument("study", help="the study file (ParameterHandler format, doc/study.md)")
     p.add_argument("--set", action="append", default=[], metavar="'Section/Entry=value'",
                    help="scene override applied to every run (repeatable)")
