@@ -6,7 +6,10 @@
     start runs nothing and writes the same file byte for byte;
  2. a run that cannot complete is a row with status 'failed' and anvil's
     reason, not a failure of the study;
- 3. bad input (a ladder entry the scene does not have, a reference quantity
+ 3. physics cost mode: the relaxation with its viscosity switched off (Model =
+    J2, h = 0) holds the yield stress exactly, sigma = sigma_0 = 300 MPa, and
+    the table gives its change against the viscous run;
+ 4. bad input (a ladder entry the scene does not have, a reference quantity
     that does not exist, an empty ladder, paired ladders of different lengths,
     a quantity of interest the scene lacks): one line naming the study file,
     exit status 2, before any run (no runs folder).
@@ -85,7 +88,25 @@ section = md.split("## Runs that did not complete")[-1]
 check(section.count("Newton did not converge") == 2,
       "study.md lists the 2 failed runs with their reason")
 
-# 3. Bad input.
+# 3. Physics cost: viscosity off.
+cost = os.path.join(BASE, "physics_cost.prm")
+with open(cost, "w") as f:
+    f.write("subsection Study\n  set Scene = %s\n  set Mode = physics cost\nend\n"
+            "subsection Quantities\n  set s = summary\nend\n"
+            "subsection Physics cost\n  subsection no viscosity\n    set Bodies/bar/Material/Model = J2\n  end\nend\n"
+            % os.path.join(SOURCE_DIR, "tests", "study", "relaxation.prm"))
+p = study(cost, os.path.join(BASE, "physics_cost"))
+with open(os.path.join(BASE, "physics_cost", "physics_cost.csv")) as f:
+    rows = {r["variant"]: r for r in csv.DictReader(f)}
+base, j2 = rows["baseline (the scene)"], rows["no viscosity"]
+print("  physics cost: viscous s = %s MPa, rate-independent s = %s MPa, change %s, wall x%s"
+      % (base["s"], j2["s"], j2["change_s"], j2["wall_time_ratio"]))
+check(p.returncode == 0 and abs(float(j2["s"]) - 300) < 1e-6 * 300,
+      "physics cost: without viscosity the bar holds sigma_0 = 300 MPa (%s)" % j2["s"])
+check(abs(float(j2["change_s"]) - (float(j2["s"]) - float(base["s"]))) < 1e-9 * 300,
+      "physics cost: change = value - baseline value")
+
+# 4. Bad input.
 with open(STUDY) as f:
     text = f.read().replace("relaxation.prm", os.path.join(SOURCE_DIR, "tests", "study", "relaxation.prm"))
 cases = [("ladder entry the scene lacks", text.replace("set Time/Time step = 0.1", "set Time/Tim step = 0.1"),
