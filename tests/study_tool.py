@@ -88,6 +88,26 @@ section = md.split("## Runs that did not complete")[-1]
 check(section.count("Newton did not converge") == 2,
       "study.md lists the 2 failed runs with their reason")
 
+# The same runs against the finest of each group (Reference/Type = finest):
+# all reused, only the table changes.
+finest = os.path.join(BASE, "finest.prm")
+with open(STUDY) as f:
+    body = f.read().replace("relaxation.prm", os.path.join(SOURCE_DIR, "tests", "study", "relaxation.prm"))
+with open(finest, "w") as f:
+    f.write(body[:body.index("subsection Reference")] + "subsection Reference\n  set Type = finest\nend\n")
+p = study(finest, full)
+with open(os.path.join(full, "timing.json")) as f:
+    timing = json.load(f)
+rows = {(r["dt"], r["newton"]): r for r in table(full)}
+coarse, fine = rows["0.1", "15"], rows["0.05", "15"]
+expected = abs(float(coarse["s"]) - float(fine["s"])) / abs(float(fine["s"]))
+check(p.returncode == 0 and timing["executed"] == 0, "Reference = finest: the runs are reused (%d executed)"
+      % timing["executed"])
+check(abs(float(coarse["error_s"]) - expected) < 1e-12 and float(fine["error_s"]) == 0,
+      "Reference = finest: dt = 0.1 error %s = |s(0.1) - s(0.05)|/|s(0.05)| = %.6g; the finest run's 0"
+      % (coarse["error_s"], expected))
+check(rows["0.1", "1"]["error_s"] in ("", "nan"), "Reference = finest: no error for a group whose finest run failed")
+
 # 3. Physics cost: viscosity off.
 cost = os.path.join(BASE, "physics_cost.prm")
 with open(cost, "w") as f:

@@ -22,7 +22,7 @@ def write_csv(study, rows, path):
     for q in study.quantities:
         head += [q.name, "error_" + q.name]
     head += ["error", "wall_time_median [s]", "wall_time_spread", "repeats"] + [c for c, _ in COSTS]
-    head += ["status", "reason", "key"]
+    head += ["status", "reason", "key", "settings"]
     with open(path, "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(head)
@@ -34,7 +34,9 @@ def write_csv(study, rows, path):
                 line += [fmt(v) if not isinstance(v, tuple) else "history", fmt(row["errors"][q.name])]
             line += [fmt(row["error"]), fmt(row["wall"]), fmt(row["spread"]), len(row["record"]["wall_times"])]
             line += [fmt(row["costs"][c]) for c, _ in COSTS]
-            line += [row["status"], row["reason"], row["spec"]["key"]]
+            ladder_paths = {p for l in study.ladders for p, _ in l.entries}
+            line += [row["status"], row["reason"], row["spec"]["key"],
+                     "; ".join("%s=%s" % (p, v) for p, v in row["spec"]["overrides"] if p in ladder_paths)]
             w.writerow(line)
 
 
