@@ -59,7 +59,7 @@ def read_stability(study):
         raise StudyInputError("%s:%d: Stability/Bisections: expected a number, not '%s'" % (path, line, text))
     s.bisections = int(text)
     text, line = get("Monitor")
-    s.monitor = _history_spec(text, path, line, "Monitor")
+    s.monitor = _history_spec(text, path, line, "Monitor") if text else None   # none: completion (and balance) only
     text, line = get("Skip", "1")
     if not text.isdigit():
         raise StudyInputError("%s:%d: Stability/Skip: expected a number of steps, not '%s'" % (path, line, text))
@@ -74,7 +74,7 @@ def read_stability(study):
     s.entries = scene_entries(node.children["Entries"], path, "Stability/Entries")
     if not any("{" in v for _, v in s.entries):
         raise StudyInputError("%s:%d: Stability/Entries: no entry uses {%s}" % (path, node.line, s.variable))
-    study.histories = [s.monitor] + ([s.balance] if s.balance else [])
+    study.histories = [h for h in (s.monitor, s.balance) if h]
     return s
 
 
@@ -82,6 +82,8 @@ def verdict(record, stab):
     """(stable?, reason) of one trial."""
     if record["status"] != "completed":
         return False, "%s: %s" % (record["status"], record["reason"])
+    if stab.monitor is None:
+        return _balance_verdict(record, stab)
     h = record["histories"].get("%s:%s" % stab.monitor)
     if h is None:
         return False, "no column %s in %s" % (stab.monitor[1], stab.monitor[0])
@@ -96,6 +98,10 @@ def verdict(record, stab):
         first, last = sum(tail[:k]) / k, sum(tail[-k:]) / k
         if last > first:
             return False, "step changes of %s grow x%.3g over the run" % (stab.monitor[1], last / max(first, 1e-300))
+    return _balance_verdict(record, stab)
+
+
+def _balance_verdict(record, stab):
     if stab.balance:
         b = record["histories"].get("%s:%s" % stab.balance)
         if b is not None and len(b[1]) >= 4:
@@ -198,9 +204,10 @@ def write_stability(study, stab, points, out):
                         "%.6g" % p["hi"] if p["hi"] is not None else "", "%.6g" % est if est else "",
                         "%.6g" % p["predicted"] if p["predicted"] is not None else "", p["trials"], p["reason"]])
     L = ["# Stability map %s" % study.name, "",
-         "Largest %s in [%g, %g] at which the run stays stable (bisection, %d steps, %s scale); monitored: %s "
-         "in %s%s." % (stab.variable, stab.lo, stab.hi, stab.bisections, stab.scale, stab.monitor[1], stab.monitor[0],
-                       (", balance: %s" % stab.balance[1]) if stab.balance else ""), "",
+         "Largest %s in [%g, %g] at which the run stays stable (bisection, %d steps, %s scale); %s%s."
+         % (stab.variable, stab.lo, stab.hi, stab.bisections, stab.scale,
+            ("monitored: %s in %s" % (stab.monitor[1], stab.monitor[0])) if stab.monitor else "the run must complete",
+            (", balance: %s" % stab.balance[1]) if stab.balance else ""), "",
          "| " + " | ".join([l.name for l in study.ladders] + ["result", "largest stable", "first unstable",
                                                               "predicted", "why unstable"]) + " |",
          "|" + "---|" * (len(study.ladders) + 5)]
