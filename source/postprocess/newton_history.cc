@@ -18,10 +18,11 @@ namespace anvil
 
     void start(const SimulationState<dim> &s, const bool append) override
     {
-      std::vector<std::string> columns = {"step",      "time",        "iteration", "residual",
-                                          "increment", "line_search", "converged"};
+      std::vector<std::string> columns = {"step",           "time [s]",        "iteration",
+                                          "residual [N]",   "increment [mm]",  "line_search [-]",
+                                          "converged"};
       if (both_fields)
-        columns.insert(columns.end(), {"heat_residual", "heat_increment"});
+        columns.insert(columns.end(), {"heat_residual [mJ]", "heat_increment [K]"});
       csv.open(s.output_directory + "/newton.csv", columns, s.is_root(), append, s.time);
     }
     void initial(const SimulationState<dim> &) override {}
