@@ -4,7 +4,6 @@
 #include <anvil/core/scene.h>
 
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 namespace anvil
@@ -150,10 +149,20 @@ namespace anvil
       {
         std::string msg = exception_text(e);
         // deal.II says "Line <12> of file <scene.prm>: ..." — reformat as file:line.
-        const std::regex  line_re("Line <([0-9]+)> of file <([^>:]*)>?:?\\s*(.*)");
-        std::smatch       m;
-        if (std::regex_search(msg, m, line_re))
-          msg = m[2].str() + ":" + m[1].str() + ": " + m[3].str();
+        // Read by hand: std::regex recurses per character and overflows the
+        // stack on the 100 000-character lines a hostile file can hold.
+        const auto line_at = msg.find("Line <");
+        const auto line_end = msg.find("> of file <", line_at);
+        const auto file_end = msg.find('>', line_end + 11);
+        if (line_at != std::string::npos && line_end != std::string::npos &&
+            file_end != std::string::npos && line_end > line_at + 6 &&
+            msg.find_first_not_of("0123456789", line_at + 6) == line_end)
+          {
+            std::string rest = msg.substr(file_end + 1);
+            rest             = trim(rest.substr(rest.rfind(':', 0) == 0 ? 1 : 0));
+            msg = msg.substr(line_end + 11, file_end - line_end - 11) + ":" +
+                  msg.substr(line_at + 6, line_end - line_at - 6) + ": " + rest;
+          }
         else
           msg = file + ": " + msg;
         // The body subsections exist only for the bodies named in Bodies/Names.

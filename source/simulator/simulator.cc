@@ -2,6 +2,7 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/utilities.h>
 
+#include <anvil/core/expression.h>
 #include <anvil/core/input_error.h>
 #include <anvil/core/instantiate.h>
 #include <anvil/simulator/simulator.h>
@@ -245,11 +246,14 @@ namespace anvil
         for (auto &o : outputs)
           o->initial(state(0, 0));
       }
+    throw_recorded_input_error(mpi_communicator);
     const double eps = 1e-12 * time.end_time;
     while (t < time.end_time - eps)
       {
         const double step = std::min(dt, time.end_time - t);
         auto         r    = scheme->advance(t, t + step);
+        // A formula that gave NaN or inf is the scene's error: no cut-back.
+        throw_recorded_input_error(mpi_communicator);
         r.time_step       = step;
         statistics.newton_iterations += r.mechanics_iterations();
         statistics.linear_iterations += r.linear_iterations();
@@ -292,6 +296,7 @@ namespace anvil
                step;
       }
 
+    throw_recorded_input_error(mpi_communicator);
     for (auto &o : outputs)
       o->finish(state(t, statistics.steps, true), false);
     write_summary("completed");
