@@ -48,6 +48,8 @@ namespace anvil
     std::string run_scene(Scene &scene, const bool check_only)
     {
       Simulator<dim> simulator(scene, MPI_COMM_WORLD);
+      if (check_only)
+        simulator.check();
       if (check_only || simulator.run())
         return "";
       return simulator.failure();

@@ -208,12 +208,38 @@ namespace anvil
   }
 
   template <int dim>
+  void Simulator<dim>::check()
+  {
+    timer = std::make_unique<TimerOutput>(mpi_communicator, pcout, TimerOutput::never,
+                                          TimerOutput::wall_times);
+    try
+      {
+        setup();
+        check_against_mesh();
+      }
+    catch (...)
+      {
+        timer.reset();
+        throw;
+      }
+    timer.reset();
+  }
+
+  template <int dim>
+  void Simulator<dim>::check_against_mesh()
+  {
+    for (auto &o : outputs)
+      o->check(state(0, 0));
+  }
+
+  template <int dim>
   bool Simulator<dim>::run_steps()
   {
     wall_start = MPI_Wtime();
     timer = std::make_unique<TimerOutput>(mpi_communicator, pcout, TimerOutput::never,
                                           TimerOutput::wall_times);
     setup();
+    check_against_mesh();
     physics.setup(triangulation, *timer, quiet);
     scheme->initialize(physics);
     double t  = 0;
