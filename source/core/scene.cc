@@ -151,17 +151,20 @@ namespace anvil
         // deal.II says "Line <12> of file <scene.prm>: ..." — reformat as file:line.
         // Read by hand: std::regex recurses per character and overflows the
         // stack on the 100 000-character lines a hostile file can hold.
-        const auto line_at = msg.find("Line <");
+        const auto line_at  = msg.find("Line <");
         const auto line_end = msg.find("> of file <", line_at);
-        const auto file_end = msg.find('>', line_end + 11);
+        const auto file_end = msg.find_first_of(">:", line_end + 11);
         if (line_at != std::string::npos && line_end != std::string::npos &&
             file_end != std::string::npos && line_end > line_at + 6 &&
             msg.find_first_not_of("0123456789", line_at + 6) == line_end)
           {
-            std::string rest = msg.substr(file_end + 1);
-            rest             = trim(rest.substr(rest.rfind(':', 0) == 0 ? 1 : 0));
+            auto rest = file_end;
+            if (msg[rest] == '>')
+              ++rest;
+            if (rest < msg.size() && msg[rest] == ':')
+              ++rest;
             msg = msg.substr(line_end + 11, file_end - line_end - 11) + ":" +
-                  msg.substr(line_at + 6, line_end - line_at - 6) + ": " + rest;
+                  msg.substr(line_at + 6, line_end - line_at - 6) + ": " + trim(msg.substr(rest));
           }
         else
           msg = file + ": " + msg;
