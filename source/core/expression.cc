@@ -47,7 +47,7 @@ namespace anvil
             for (unsigned int d = 0; d < variables.size(); ++d)
               at << (d ? ", " : "") << variables[d] << " = "
                  << (d < dim ? p[d] : this->get_time());
-            record_non_finite(location + " = '" + expression + "' evaluates to " +
+            record_input_error(location + " = '" + expression + "' evaluates to " +
                               (std::isnan(v) ? "NaN" : v > 0 ? "+inf" : "-inf") + " at " +
                               at.str() + ": expected a finite value wherever and whenever "
                               "the run evaluates it");
@@ -62,7 +62,7 @@ namespace anvil
     };
   } // namespace
 
-  void record_non_finite(const std::string &message)
+  void record_input_error(const std::string &message)
   {
     std::lock_guard<std::mutex> lock(non_finite_mutex);
     if (first_non_finite.empty())

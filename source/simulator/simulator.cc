@@ -130,6 +130,12 @@ namespace anvil
                    std::filesystem::path(scene.filename().empty() ? "anvil" : scene.filename())
                      .stem()
                      .string();
+    // A run killed between the two renames of write_checkpoint() has left its
+    // last good checkpoint as <dir>.old: resume from that one.
+    namespace fs = std::filesystem;
+    if (!restart_directory.empty() && !fs::exists(restart_directory + "/state.txt") &&
+        fs::exists(restart_directory + ".old/state.txt"))
+      restart_directory += ".old";
     if (!restart_directory.empty())
       check_checkpoint();
     for (const auto &entry : PostprocessorRegistry<dim>::instance().all())

@@ -26,7 +26,7 @@ namespace anvil
    * where and when it was evaluated. throw_recorded_input_error() (collective
    * over @p comm) turns it into an InputError on every process.
    */
-  void record_non_finite(const std::string &message);
+  void record_input_error(const std::string &message);
   void throw_recorded_input_error(MPI_Comm comm);
 
   /// The same with other variables (e.g. "t" for dim = 1, not time dependent);
