@@ -78,6 +78,11 @@ for scheme in "isothermal split" "adiabatic split" "iterated staggered"; do
 done
 python3 - "$out" <<'PY'
 import csv, json, os, sys
+
+
+def bare_rows(path):
+    """CSV rows keyed by the column name before its " [unit]"."""
+    return [{k.split(" [")[0]: v for k, v in r.items()} for r in csv.DictReader(open(path))]
 out = sys.argv[1]
 print("thermal necking bar (prm/necking_bar_thermal.prm), one process:")
 print("%-19s %6s %5s %7s %13s %10s %9s %10s %9s %9s %9s %8s" % (
@@ -89,11 +94,11 @@ for scheme in ("isothermal", "adiabatic", "iterated"):
         print("%-19s (no summary.json)" % scheme)
         continue
     s = json.load(open(d + "/summary.json"))
-    rows = list(csv.DictReader(open(d + "/thermal.csv")))
+    rows = list(bare_rows(d + "/thermal.csv"))
     n = max(1, len(rows))
     col = lambda k: sum(float(r[k]) for r in rows)
     mech, heat = col("mechanics_wall_time"), col("thermal_wall_time")
-    F = [float(r["top_Fy"]) for r in csv.DictReader(open(d + "/reactions.csv"))]
+    F = [float(r["top_Fy"]) for r in bare_rows(d + "/reactions.csv")]
     q = s["quantities_of_interest"]
     stag = "%10.2f" % (col("staggered_iterations") / n) if scheme == "iterated" else "%10s" % "-"
     print("%-19s %6d %5d %7.2f %13.1f %10.2f %9.2f %s %9.1f %9.1f %9.3f %8.4f%s" % (
@@ -210,6 +215,11 @@ mpirun -np 2 --oversubscribe "$ANVIL_BUILD/anvil" "$ANVIL_ROOT/prm/tube_impact.p
   --set "Output/Directory=$out/tube_np2" "${tube_sets[@]}" || echo "tube_impact.prm, np = 2: anvil exited with status $?"
 python3 - "$out" <<'PY'
 import csv, json, os, sys
+
+
+def bare_rows(path):
+    """CSV rows keyed by the column name before its " [unit]"."""
+    return [{k.split(" [")[0]: v for k, v in r.items()} for r in csv.DictReader(open(path))]
 out = sys.argv[1]
 for np in (1, 2):
     d = "%s/tube_np%d" % (out, np)
@@ -218,7 +228,7 @@ for np in (1, 2):
         continue
     s = json.load(open(d + "/summary.json"))
     w = s["wall_time_per_phase"]
-    rows = list(csv.DictReader(open(d + "/reactions.csv")))
+    rows = list(bare_rows(d + "/reactions.csv"))
     t = [float(r["time"]) for r in rows]
     F = [-float(r["top_Fy"]) for r in rows]
     W = sum(0.5 * (F[i] + F[i - 1]) * (t[i] - t[i - 1]) for i in range(1, len(t)))

@@ -67,11 +67,39 @@ def run_point(prm, sets=(), name=None, expect_status=0, extra=()):
 
 
 
+def bare(name):
+    """'reaction_x [N]' -> 'reaction_x': a column's name without its unit."""
+    return name.split(" [", 1)[0].strip()
+
+
+class Columns(dict):
+    """A CSV file's columns by name; a name matches with or without its
+    ' [unit]' (c["time"] and c["time [s]"] are the same column); units[name]
+    is the unit of each ('' when the header has none)."""
+
+    def __init__(self, items, units):
+        super().__init__(items)
+        self.units = units
+
+    def __getitem__(self, key):
+        return super().__getitem__(bare(key))
+
+    def __contains__(self, key):
+        return super().__contains__(bare(key))
+
+    def get(self, key, default=None):
+        return super().get(bare(key), default)
+
+
 def read_csv(path):
-    """Columns of a CSV file as a dict of float lists."""
+    """Columns of a CSV file as a dict of float lists, by name (see Columns)."""
     with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return {k: [float(r[k]) for r in rows] for k in rows[0].keys()} if rows else {}
+        rows = list(csv.reader(f))
+    if len(rows) < 2:
+        return Columns({}, {})
+    header = rows[0]
+    units = {bare(h): (h.split(" [", 1)[1].rstrip("]") if " [" in h else "") for h in header}
+    return Columns({bare(h): [float(r[i]) for r in rows[1:]] for i, h in enumerate(header)}, units)
 
 
 def check(condition, message):

@@ -811,6 +811,77 @@ namespace
               << " faces with the master normal pointing out of the cell" << std::endl;
     check(ok == GeometryInfo<dim>::faces_per_cell, "face_order_gives_outward_normal<" + std::to_string(dim) + ">");
   }
+
+  /**
+   * A slave below a concave corner of the master (two segments meeting at
+   * the vertex (0, 0) at 120°, their normals pointing up and inward): in the
+   * region where it projects into neither face, node_to_vertex() must (a)
+   * meet node_to_segment() of each face on the region's edges (gap, normal
+   * and forces equal: the Newton stall of the tube, doc/contact.md), (b) give
+   * the closed-form gap −|x_s − x_v| and normal (x_v − x_s)/|x_v − x_s|, and
+   * (c) have a tangent equal to finite differences, sticking and sliding.
+   */
+  double test_concave_corner()
+  {
+    std::cout << "8. Slave below a concave corner (node to vertex)" << std::endl;
+    const double      angle = numbers::PI / 6; // each face rises 30° from the vertex
+    const Point<2>    v(0, 0), a(-std::cos(angle), std::sin(angle)), b(std::cos(angle), std::sin(angle));
+    // Master faces ordered so that the left normal points up (into the valley).
+    const std::vector<Point<2>> left = {a, v}, right = {v, b};
+    const FrictionLaw           law  = seed_law();
+    // On the edge of the region under the right face: straight below the vertex
+    // along −n of that face.
+    const Tensor<1, 2> n_right({-std::sin(angle), std::cos(angle)});
+    const Tensor<1, 2> n_left({std::sin(angle), std::cos(angle)});
+    for (const auto &[face, normal, name] :
+         {std::make_tuple(right, n_right, "right"), std::make_tuple(left, n_left, "left")})
+      {
+        const Point<2> slave     = v - 0.05 * normal;
+        const Point<2> slave_old = slave + Tensor<1, 2>({0.002, 0.});
+        const auto by_face  = node_to_segment(slave, slave_old, face, face, NodeState<2>(), law, false);
+        const auto by_vertex = node_to_vertex(slave, slave_old, v, v, NodeState<2>(), law, false);
+        std::cout << "  edge of the " << name << " face: xi " << by_face.xi[0] << "  gap " << by_face.gap
+                  << " / " << by_vertex.gap << "  t_N " << by_face.normal_force << " / "
+                  << by_vertex.normal_force << "  |t_T| " << by_face.tangential_force.norm() << " / "
+                  << by_vertex.tangential_force.norm() << std::endl;
+        check(by_face.in_contact && by_vertex.in_contact, std::string(name) + ": both in contact");
+        check(close(by_face.gap, by_vertex.gap, 1e-12), std::string(name) + ": gap continuous");
+        check(close(by_face.normal, by_vertex.normal, 1e-12), std::string(name) + ": normal continuous");
+        check(close(by_face.tangential_force, by_vertex.tangential_force, 1e-9),
+              std::string(name) + ": friction force continuous");
+        check(close(by_face.residual[0], by_vertex.residual[0], 1e-9) &&
+                close(by_face.residual[1], by_vertex.residual[1], 1e-9),
+              std::string(name) + ": force on the slave continuous");
+      }
+    // Inside the region: the closed form.
+    const Point<2> slave(0.01, -0.04);
+    const auto     r = node_to_vertex(slave, slave, v, v, NodeState<2>(), law, false);
+    check(close(r.gap, -slave.norm(), 1e-14), "vertex: gap = -|x_s - x_v|");
+    check(close(r.normal, Tensor<1, 2>(-slave / slave.norm()), 1e-14), "vertex: normal along x_v - x_s");
+    check(!node_to_segment(slave, slave, left, left, NodeState<2>(), law, false).projection_inside &&
+            !node_to_segment(slave, slave, right, right, NodeState<2>(), law, false).projection_inside,
+          "vertex: the slave projects into neither face");
+
+    const auto evaluator = [](const Point<2> &slave_old, const Point<2> &vertex_old, const NodeState<2> &state,
+                              const FrictionLaw &law) -> Evaluator<2> {
+      return [=](const std::vector<double> &x, const bool tangent) {
+        return node_to_vertex(Point<2>(x[0], x[1]), slave_old, Point<2>(x[2], x[3]), vertex_old, state, law,
+                              tangent);
+      };
+    };
+    const std::vector<double> x0 = {0.01, -0.04, 0.001, 0.0005};
+    NodeState<2>              sticking;
+    double                    worst = tangent_error<2>("vertex, stick", x0,
+                                  evaluator(Point<2>(0.0101, -0.04), v, sticking, law), false);
+    worst = std::max(worst, tangent_error<2>("vertex, slide", x0,
+                                             evaluator(Point<2>(0.03, -0.04), v, sticking, law), true));
+    NodeState<2> old;
+    old.in_contact       = true;
+    old.tangential_force = Tensor<1, 2>({3., 1.});
+    worst = std::max(worst, tangent_error<2>("vertex, old force, stick", x0,
+                                             evaluator(Point<2>(0.0100, -0.0401), v, old, law), false));
+    return worst;
+  }
 } // namespace
 
 int main()
@@ -819,7 +890,7 @@ int main()
   try
     {
       test_tools();
-      const double worst = test_tangents();
+      double worst = test_tangents();
       test_friction();
       test_facet_projection();
       test_objectivity();
@@ -827,6 +898,7 @@ int main()
       std::cout << "7. Master node order of deal.II faces" << std::endl;
       test_face_order<2>();
       test_face_order<3>();
+      worst = std::max(worst, test_concave_corner());
       std::cout << "largest tangent error " << worst << std::endl;
     }
   catch (const std::exception &e)

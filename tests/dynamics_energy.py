@@ -6,7 +6,11 @@ set in motion by an initial velocity, small amplitude (linear regime):
    (1/2 sigma : H^-1 : sigma, a state function independent of the work
    bookkeeping) changes by less than 1e-6 of the initial energy per step, for
    the smoothest mode (sin(pi x / 2L)) and the roughest one the mesh carries
-   (cos(pi x / h)); the work balance W_ext - W_int - dK closes to 1e-10;
+   (cos(pi x / h)); the work balance W_ext + K0 - K - W_sigma (nodes against
+   the points' stress work, doc/energy_audit.md) closes to 1e-8: at rho_inf =
+   1 the free dofs are in balance on the average of t_n and t_n+1, which is
+   the trapezoid of the work, so only the Newton tolerance and the third-order
+   geometric terms (~1e-9 here) remain;
  - rho_inf = 0.5 damps only the high frequencies: after 10 steps of T1/50 the
    smooth mode keeps > 99 % of its energy while the rough one keeps < 5 %."""
 from anvil_test import run, read_csv, check, finish
@@ -26,7 +30,7 @@ for rho in (1, 0.5):
               % (rho, name, E[-1] / E[0], step_change, max(e["balance_error"]), s["steps"], s["newton_iterations"]))
         if rho == 1:
             check(step_change < 1e-6, "rho_inf = 1, %s mode: energy conserved to %.2e per step" % (name, step_change))
-            check(max(e["balance_error"]) < 1e-10, "rho_inf = 1, %s mode: W_ext - W_int - dK = %.2e" % (name, max(e["balance_error"])))
+            check(max(e["balance_error"]) < 1e-8, "rho_inf = 1, %s mode: W_ext + K0 - K - W_sigma = %.2e" % (name, max(e["balance_error"])))
         elif name == "smooth":
             check(E[-1] / E[0] > 0.99, "rho_inf = 0.5 keeps the smooth mode (%.4f of its energy)" % (E[-1] / E[0]))
         else:

@@ -18,7 +18,7 @@ import sys
 from anvil_test import SOURCE_DIR, check, finish
 
 # What each concern may include (besides itself). Independent of the code: this
-# table is the design (doc/architecture.md, ../shared/DESIGN.md).
+# table is the design (doc/architecture.md).
 ALLOWED = {
     "core": set(),
     "geometry": {"core"},

@@ -201,6 +201,9 @@ def csv_fingerprint(path):
     header, body = rows[0], rows[1:]
     columns = {}
     for i, name in enumerate(header):
+        # Columns are matched by name; a header's " [unit]" is not part of it
+        # (so references recorded before units were added still compare).
+        name = name.split(" [", 1)[0].strip()
         if (filename, name) in EXCLUDED_COLUMNS:
             continue
         columns[name] = {"group": column_group(filename, name),

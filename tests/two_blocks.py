@@ -1,5 +1,5 @@
-"""Thermomechanical contact: the seed's two-block scene (prm/two_blocks.prm,
-../shared/SCENES.md section 1) and the checks of contact heat (seed eq. 30-34).
+"""Thermomechanical contact: the seed's two-block scene (prm/two_blocks.prm, with
+the reconstruction of the lost figure in its header) and the checks of contact heat (seed eq. 30-34).
 
 1. Two blocks: friction work W = mu p w s = 9.375 N mm/mm, half into each block;
    with the contact exchange stopped each insulated block becomes uniform at

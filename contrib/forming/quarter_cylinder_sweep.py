@@ -75,7 +75,9 @@ def main():
                                                 "springback", "closed form", "ratio"))
     for T, out, p in jobs:
         p.wait()
-        rows = list(csv.DictReader(open(os.path.join(out, "probes.csv"))))
+        # Headers carry units ("time [s]"): columns by the name before " [".
+        rows = [{k.split(" [")[0]: v for k, v in r.items()}
+                for r in csv.DictReader(open(os.path.join(out, "probes.csv")))]
         hold = [r for r in rows if float(r["time"]) <= 3000][-1]
         a_hold, a_end = tip_rotation(hold), tip_rotation(rows[-1])
         cf = closed_form_springback(T)

@@ -210,6 +210,33 @@ namespace anvil
         return g;
       }
 
+      /**
+       * A slave behind a concave corner of the master, below the shared vertex
+       * x_v where it projects into neither face: the closest master point is the
+       * vertex, so n = (x_v − x_s)/|x_v − x_s| and g_N = −|x_v − x_s|. On the
+       * edges of that region x_s − x_v is along −n of the face there, so gap,
+       * normal and force continue those of node_to_segment() (no jump for
+       * Newton to chase; doc/contact.md, "Concave corners").
+       */
+      template <int dim, typename Number>
+      PairGeometry<dim, Number> vertex_geometry(const std::vector<Number> &coordinates,
+                                                const Tensor<1, dim>      &slave_old,
+                                                const Tensor<1, dim>      &vertex_old)
+      {
+        using std::sqrt;
+        PairGeometry<dim, Number>    g;
+        const Tensor<1, dim, Number> xs = node<dim>(coordinates, 0), xv = node<dim>(coordinates, 1);
+        const Tensor<1, dim, Number> d      = xv - xs;
+        const Number                 length = sqrt(dot(d, d));
+        for (unsigned int i = 0; i < dim; ++i)
+          g.normal[i] = d[i] / length;
+        g.gap   = -length;
+        g.shape = {Number(1.)};
+        for (unsigned int i = 0; i < dim; ++i)
+          g.relative_increment[i] = xs[i] - slave_old[i] - (xv[i] - vertex_old[i]);
+        return g;
+      }
+
       /// The rigid tool: gap and normal from its projection, relative to its translation.
       template <int dim, typename Number>
       PairGeometry<dim, Number> tool_geometry(const std::vector<Number> &coordinates,
@@ -420,6 +447,28 @@ namespace anvil
     }
 
     template <int dim>
+    ContactResult<dim> node_to_vertex(const Point<dim>     &slave,
+                                      const Point<dim>     &slave_old,
+                                      const Point<dim>     &vertex,
+                                      const Point<dim>     &vertex_old,
+                                      const NodeState<dim> &state,
+                                      const FrictionLaw    &law,
+                                      const bool            tangent)
+    {
+      std::vector<double> coordinates;
+      for (const auto *p : {&slave, &vertex})
+        for (unsigned int d = 0; d < dim; ++d)
+          coordinates.push_back((*p)[d]);
+      if (slave.distance(vertex) == 0)
+        return ContactResult<dim>(); // on the vertex: no direction, no penetration
+      const auto geometry = [&](const auto &x) {
+        using Number = typename std::decay_t<decltype(x)>::value_type;
+        return vertex_geometry<dim, Number>(x, slave_old, vertex_old);
+      };
+      return evaluate<dim>(coordinates, geometry, state, law, tangent);
+    }
+
+    template <int dim>
     ContactResult<dim> node_to_tool(const Point<dim>     &slave,
                                     const Point<dim>     &slave_old,
                                     const RigidTool<dim> &tool,
@@ -445,6 +494,9 @@ namespace anvil
                                               const std::vector<Point<dim>> &,                    \
                                               const std::vector<Point<dim>> &,                    \
                                               const NodeState<dim> &, const FrictionLaw &, bool); \
+  template ContactResult<dim> node_to_vertex(const Point<dim> &, const Point<dim> &,              \
+                                             const Point<dim> &, const Point<dim> &,              \
+                                             const NodeState<dim> &, const FrictionLaw &, bool);  \
   template ContactResult<dim> node_to_tool(const Point<dim> &, const Point<dim> &,                \
                                            const RigidTool<dim> &, double, double,                \
                                            const NodeState<dim> &, const FrictionLaw &, bool);

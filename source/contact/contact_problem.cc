@@ -243,8 +243,13 @@ namespace anvil
   double ContactProblem<dim>::tributary_area(const unsigned int node, const Surface &surface,
                                              const std::vector<Point<dim>> &x) const
   {
-    // 2D: half of each adjacent segment (times 2πr when axisymmetric);
-    // 3D: a quarter of each adjacent facet (diagonals' cross product / 2).
+    // 2D: half of each adjacent segment; axisymmetric: the node's share of
+    // the ring each segment sweeps, the integral of its shape function,
+    // 2 pi L (2 r_node + r_other) / 6 — the share a uniform pressure's
+    // nodal forces have, so a uniform pressure gives a uniform penetration.
+    // Inside a uniform face that is 2 pi r L as before; the node on the axis
+    // gets pi L^2 / 3, not 2 pi r L/2 = 0 (no force: it sank through the tool).
+    // The areas add up to the face's. 3D: a quarter of each adjacent facet.
     double area = 0;
     for (const auto f : node_faces[node])
       {
@@ -252,15 +257,23 @@ namespace anvil
         if (!surface.has(faces[f]))
           continue;
         if constexpr (dim == 2)
-          area += 0.5 * x[nodes[0]].distance(x[nodes[1]]);
+          {
+            const double length = x[nodes[0]].distance(x[nodes[1]]);
+            if (!axisymmetric)
+              area += 0.5 * length;
+            else
+              {
+                const double r     = std::abs(x[node][0]);
+                const double other = std::abs(x[nodes[0] == node ? nodes[1] : nodes[0]][0]);
+                area += 2 * numbers::PI * length * (2 * r + other) / 6;
+              }
+          }
         else
           {
             const Tensor<1, dim> d1 = x[nodes[3]] - x[nodes[0]], d2 = x[nodes[2]] - x[nodes[1]];
             area += 0.25 * 0.5 * cross_product_3d(d1, d2).norm();
           }
       }
-    if (axisymmetric)
-      area *= 2 * numbers::PI * x[node][0];
     return area;
   }
 
@@ -365,6 +378,20 @@ namespace anvil
   }
 
   template <int dim>
+  std::pair<int, unsigned int> ContactProblem<dim>::concave_corner(
+    const std::vector<std::pair<unsigned int, unsigned int>> &beyond_end) const
+  {
+    // Two faces the node is behind and beyond, ending at one vertex: the node
+    // is below a concave corner, where no face's projection reaches it.
+    for (unsigned int i = 0; i < beyond_end.size(); ++i)
+      for (unsigned int j = i + 1; j < beyond_end.size(); ++j)
+        if (faces[beyond_end[i].first].nodes[beyond_end[i].second] ==
+            faces[beyond_end[j].first].nodes[beyond_end[j].second])
+          return {int(beyond_end[i].first), beyond_end[i].second};
+    return {-1, 0};
+  }
+
+  template <int dim>
   bool ContactProblem<dim>::assemble(const Vector &u, const bool with_matrix, const Adder &add)
   {
     std::vector<Point<dim>> &x = x_last;
@@ -405,6 +432,7 @@ namespace anvil
                   {
                     // The closest master face the node projects into.
                     int best_face = -1;
+                    std::vector<std::pair<unsigned int, unsigned int>> beyond_end; // (face, its end)
                     for (const auto f : candidates[n])
                       {
                         if (!may_touch(p, n, f, x))
@@ -418,7 +446,14 @@ namespace anvil
                         auto r = contact::node_to_segment(x[n], x_old[n], xm, xm_old, state, law,
                                                           false);
                         if (!r.projection_inside)
-                          continue;
+                          {
+                            // Behind the face's line and beyond its end: a side
+                            // of a concave corner, if another face shares the vertex.
+                            if (dim == 2 && r.gap < 0 &&
+                                !(pair.self && -r.gap > 1.5 * penetration_limit))
+                              beyond_end.emplace_back(f, r.xi[0] < 0 ? 0u : 1u);
+                            continue;
+                          }
                         // Self-contact: a node deeper behind a face of its own
                         // surface than 1.5 penetration limits is seeing it through
                         // the wall (the other skin of a thin wall), not touching it;
@@ -431,7 +466,30 @@ namespace anvil
                             best_face = f;
                           }
                       }
-                    if (with_matrix && best_face >= 0 && result.in_contact)
+                    if (best_face < 0)
+                      {
+                        const auto corner = concave_corner(beyond_end);
+                        if (corner.first >= 0)
+                          {
+                            const unsigned int v = faces[corner.first].nodes[corner.second];
+                            result = contact::node_to_vertex(x[n], x_old[n], x[v], x_old[v], state,
+                                                             law, with_matrix);
+                            if (result.in_contact)
+                              {
+                                if (!allowed.count({p, pass, n, unsigned(corner.first)}))
+                                  {
+                                    allowed.insert({p, pass, n, unsigned(corner.first)});
+                                    grew    = true;
+                                    missing = true;
+                                  }
+                                dofs.insert(dofs.end(), node_dofs[v].begin(), node_dofs[v].end());
+                                trials[key].face    = corner.first;
+                                trials[key].weights = {corner.second == 0 ? 1. : 0.,
+                                                       corner.second == 0 ? 0. : 1.};
+                              }
+                          }
+                      }
+                    else if (with_matrix && result.in_contact)
                       {
                         // The tangent for the face kept only.
                         std::vector<Point<dim>> xm, xm_old;

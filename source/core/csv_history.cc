@@ -28,7 +28,7 @@ namespace anvil
       std::istringstream header(lines[0]);
       bool               found = false;
       for (std::string name; std::getline(header, name, ','); ++k)
-        if (name == "time")
+        if (name == "time" || name.rfind("time [", 0) == 0)
           {
             time_column = k;
             found       = true;

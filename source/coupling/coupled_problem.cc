@@ -50,6 +50,10 @@ namespace anvil
         prm.enter_subsection(name);
         materials[id] = MaterialFactory::create(prm, scene, "Bodies/" + name);
         prm.leave_subsection();
+        if (with_mechanics && !(materials[id]->bulk_modulus() > 0))
+          scene.fail("Bodies/" + name + "/Material/Elasticity/Young's modulus",
+                     "and 'Bulk modulus' are both 0: the mechanics needs one of them > 0 "
+                     "(Physics/Coupling = thermal only needs neither)");
       }
     prm.leave_subsection();
     mechanical_parameters.parse_parameters(prm, scene);

@@ -51,7 +51,10 @@ namespace anvil
     const double nu = prm.get_double("Poisson's ratio");
     if (!(nu > -1. && nu < 0.5))
       scene.fail(path + "/Poisson's ratio", "= " + std::to_string(nu) + ": expected -1 < nu < 0.5");
-    if ((E > 0) == (K > 0))
+    // Both 0 is allowed here: a thermal-only scene needs no elastic
+    // constants; a scene with mechanics refuses a zero modulus where it
+    // builds the mechanics (CoupledProblem::parse_parameters).
+    if (E > 0 && K > 0)
       scene.fail(path + "/Young's modulus",
                  "and 'Bulk modulus': expected exactly one of them > 0 (the other 0)");
     K0                    = K > 0 ? K : E / (3. * (1. - 2. * nu));

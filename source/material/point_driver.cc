@@ -217,6 +217,9 @@ namespace anvil
         std::string       rest = message.substr(close + 1);
         scene.fail(path, trim(rest));
       }
+    if (!(model->bulk_modulus() > 0))
+      scene.fail("Material/Elasticity/Young's modulus",
+                 "and 'Bulk modulus' are both 0: expected one of them > 0");
 
     prm.enter_subsection("Path");
     control   = prm.get("Control") == "strain" ? Control::strain : Control::deformation_gradient;
@@ -457,14 +460,15 @@ namespace anvil
         if (!parent.empty())
           std::filesystem::create_directories(parent, ignored);
       }
-    std::vector<std::string> columns = {"step", "time", "temperature"};
+    // Each header carries its unit ("sxx [MPa]"); readers match the name before " [".
+    std::vector<std::string> columns = {"step", "time [s]", "temperature [K]"};
     for (const auto *name : strain_names)
-      columns.emplace_back(name);
+      columns.emplace_back(std::string(name) + " [-]");
     for (const auto *name : stress_names)
-      columns.emplace_back(name);
-    for (const auto *name : {"von_mises", "pressure", "equivalent_plastic_strain",
-                             "plastic_work_rate", "plastic_dissipation_rate",
-                             "thermoelastic_heating_rate", "return_iterations",
+      columns.emplace_back(std::string(name) + " [MPa]");
+    for (const auto *name : {"von_mises [MPa]", "pressure [MPa]", "equivalent_plastic_strain [-]",
+                             "plastic_work_rate [MPa/s]", "plastic_dissipation_rate [MPa/s]",
+                             "thermoelastic_heating_rate [MPa/s]", "return_iterations",
                              "local_iterations"})
       columns.emplace_back(name);
     csv.open(file, columns, write);

@@ -1,6 +1,7 @@
 // The mechanical residual and its exact linearisation: the cell loop on the
 // threads of this process (WorkStream), the kernels of assembly_kernels.h
 // per cell, the contact elements after it (doc/mechanics.md, "Assembly").
+#include <deal.II/base/mpi.h>
 #include <deal.II/base/work_stream.h>
 #include <deal.II/grid/filtered_iterator.h>
 
@@ -39,6 +40,7 @@ namespace anvil
     c.newmark_beta          = newmark_beta;
     c.gravity               = gravity;
     c.body_force            = gravity.norm() > 0;
+    c.materials             = &materials;
     c.points                = &points;
     c.heat_sources          = &heat_sources;
     c.thermoelastic_sources = &thermoelastic_sources;
@@ -59,6 +61,7 @@ namespace anvil
     system_rhs     = 0;
     internal_force = 0;
     external_force = 0;
+    contact_force  = 0;
     inertia_force  = 0;
 
     const Context<dim> context = assembly_context(with_matrix, time);
@@ -121,8 +124,7 @@ namespace anvil
     // first cell that failed nothing more is added (the step is cut back).
     bool         failed  = false;
     unsigned int n_cells = 0;
-    step_internal_work    = 0;
-    step_plastic_work     = 0;
+    step_audit.fill(0.);
     max_plastic_increment = 0;
     material_failure.clear();
     auto copier = [&](const CopyData &copy) {
@@ -135,11 +137,10 @@ namespace anvil
           material_failure = copy.failure;
           return;
         }
-      for (unsigned int q = 0; q < copy.stress_work.size(); ++q)
-        {
-          step_internal_work += copy.stress_work[q];
-          step_plastic_work += copy.plastic_work[q];
-        }
+      static_assert(MechanicsAssembly::n_audit_terms == 6, "step_audit holds every AuditTerm");
+      for (const auto &terms : copy.audit)
+        for (unsigned int k = 0; k < terms.size(); ++k)
+          step_audit[k] += terms[k];
       max_plastic_increment = std::max(max_plastic_increment, copy.max_plastic_increment);
       if (dynamic)
         inertia_force.add(copy.dof_indices, copy.inertia);
@@ -168,7 +169,7 @@ namespace anvil
         // A slave met a master face outside the matrix's pattern: grow it, again.
         if (with_matrix)
           system_matrix.compress(VectorOperation::add);
-        for (auto *v : {&system_rhs, &internal_force, &external_force, &inertia_force})
+        for (auto *v : {&system_rhs, &internal_force, &external_force, &inertia_force, &contact_force})
           v->compress(VectorOperation::add);
         setup_matrix();
         return assemble(with_matrix, time);
@@ -180,6 +181,7 @@ namespace anvil
     internal_force.compress(VectorOperation::add);
     external_force.compress(VectorOperation::add);
     inertia_force.compress(VectorOperation::add);
+    contact_force.compress(VectorOperation::add);
     if (dynamic)
       {
         // − α_f R(u_n) on the free dofs.
@@ -187,8 +189,11 @@ namespace anvil
         active_constraints->set_zero(old_part);
         system_rhs.add(-alpha_f, old_part);
       }
-    step_internal_work    = Utilities::MPI::sum(step_internal_work, mpi_communicator);
-    step_plastic_work     = Utilities::MPI::sum(step_plastic_work, mpi_communicator);
+    {
+      std::vector<double> sums(step_audit.begin(), step_audit.end());
+      Utilities::MPI::sum(sums, mpi_communicator, sums);
+      std::copy(sums.begin(), sums.end(), step_audit.begin());
+    }
     max_plastic_increment = Utilities::MPI::max(max_plastic_increment, mpi_communicator);
 
     const double seconds =

@@ -52,8 +52,7 @@ namespace anvil
       , external(n_dofs)
       , inertia(n_dofs)
       , dof_indices(n_dofs)
-      , stress_work(n_q_points)
-      , plastic_work(n_q_points)
+      , audit(n_q_points)
     {}
 
     ANVIL_INSTANTIATE_CLASS(ScratchData)

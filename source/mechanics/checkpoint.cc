@@ -16,7 +16,8 @@ namespace anvil
   std::vector<TrilinosWrappers::MPI::Vector *> MechanicalProblem<dim>::checkpoint_targets()
   {
     return {&owned_old_solution, &velocity_old,       &acceleration_old,  &previous_increment,
-            &internal_force_old, &external_force_old, &reaction_force_old, &static_residual_old};
+            &internal_force_old, &external_force_old, &reaction_force_old, &static_residual_old,
+            &contact_force_old};
   }
 
   template <int dim>
@@ -109,10 +110,20 @@ namespace anvil
   NamedValues MechanicalProblem<dim>::checkpoint_scalars() const
   {
     const Energy &e = energy_audit;
-    return {{"external_work", e.external_work},     {"internal_work", e.internal_work},
-            {"stress_work", e.stress_work},         {"kinetic_energy", e.kinetic},
-            {"initial_kinetic_energy", e.initial_kinetic}, {"plastic_work", e.plastic_work},
-            {"elastic_energy", e.elastic_energy},   {"previous_time_step", previous_time_step}};
+    return {{"external_work", e.external_work},
+            {"internal_work", e.internal_work},
+            {"contact_work", e.contact_work},
+            {"stress_work", e.stress_work},
+            {"kinetic_energy", e.kinetic},
+            {"initial_kinetic_energy", e.initial_kinetic},
+            {"plastic_work", e.plastic_work},
+            {"flow_plastic_work", e.flow_plastic_work},
+            {"elastic_energy", e.elastic_energy},
+            {"initial_elastic_energy", e.initial_elastic_energy},
+            {"thermal_work", e.thermal_work},
+            {"hypoelastic_volume_work", e.hypoelastic_volume_work},
+            {"f_bar_work", e.f_bar_work},
+            {"previous_time_step", previous_time_step}};
   }
 
   template <int dim>
@@ -126,6 +137,12 @@ namespace anvil
     e.initial_kinetic  = named_value(v, "initial_kinetic_energy");
     e.plastic_work     = named_value(v, "plastic_work");
     e.elastic_energy   = named_value(v, "elastic_energy");
+    e.contact_work     = named_value(v, "contact_work");
+    e.flow_plastic_work       = named_value(v, "flow_plastic_work");
+    e.initial_elastic_energy  = named_value(v, "initial_elastic_energy");
+    e.thermal_work            = named_value(v, "thermal_work");
+    e.hypoelastic_volume_work = named_value(v, "hypoelastic_volume_work");
+    e.f_bar_work              = named_value(v, "f_bar_work");
     previous_time_step = named_value(v, "previous_time_step");
   }
 

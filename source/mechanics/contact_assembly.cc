@@ -30,6 +30,7 @@ namespace anvil
         else
           active_constraints->distribute_local_to_global(rhs, dofs, system_rhs);
         internal_force.add(dofs, r); // reactions include the contact forces
+        contact_force.add(dofs, r);
       });
   }
 

@@ -3,9 +3,11 @@
 #include <deal.II/base/symmetric_tensor.h>
 
 #include <anvil/core/instantiate.h>
+#include <anvil/material/j2_plasticity.h>
 #include <anvil/mechanics/assembly_kernels.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace anvil
@@ -13,6 +15,101 @@ namespace anvil
   namespace MechanicsAssembly
   {
     using namespace dealii;
+
+    namespace
+    {
+      /// W = ½ σ : H(T)⁻¹ : σ = p²/2K + s : s/4G, per current volume (MPa = N mm/mm³).
+      double elastic_energy_density(const SymmetricTensor<2, 3> &sigma, const double K,
+                                    const double G)
+      {
+        const double p = trace(sigma) / 3;
+        const auto   s = deviator(sigma);
+        return 0.5 * p * p / K + (s * s) / (4 * G);
+      }
+
+      /// σ̄ = ½(ΔR σ_n ΔRᵀ + σ_n+1): the step's stress on the configuration of
+      /// Δε (Hughes–Winget; the update's own rotated σ̃_n, doc/energy_audit.md).
+      SymmetricTensor<2, 3> mean_stress(const IncrementalKinematics  &kin,
+                                        const SymmetricTensor<2, 3> &stress_old,
+                                        const SymmetricTensor<2, 3> &stress_new)
+      {
+        const Tensor<2, 3> &R = kin.rotation_increment;
+        return 0.5 * (symmetrize(R * Tensor<2, 3>(stress_old) * transpose(R)) + stress_new);
+      }
+    } // namespace
+
+    template <int dim>
+    void MaterialPointUpdate<dim>::audit_terms(const CellIterator<dim>   &cell,
+                                               const unsigned int         q,
+                                               const Tensor<2, 3>        &F,
+                                               const Tensor<2, 3>        &F_old,
+                                               const PointValues         &p,
+                                               const MaterialIncrement   &increment,
+                                               std::array<double, n_audit_terms> &terms) const
+    {
+      const MaterialPoint         &point   = *p.point;
+      const MaterialResponse      &r       = p.response;
+      const SymmetricTensor<2, 3> &sigma_n = point.committed_stress();
+      // dv½ = det(½(F + F_n)) dV: the mid configuration Δε lives on.
+      const double dv_half = determinant(0.5 * (F + F_old)) * p.w;
+
+      // The material's stress power over the step, on its own kinematics (F̄ with F-bar).
+      const SymmetricTensor<2, 3> sigma_bar = mean_stress(p.kin, sigma_n, r.stress);
+      terms[audit_material_work] = (sigma_bar * p.kin.strain_increment) * dv_half;
+      // What the internal force works with: the true F (∫ σ : ∇ₓδv dv, stress_divergence.cc).
+      if (context.formulation->f_bar)
+        {
+          IncrementalKinematics true_kin;
+          true_kin.reinit(F, F_old);
+          terms[audit_stress_work] =
+            (mean_stress(true_kin, sigma_n, r.stress) * true_kin.strain_increment) * dv_half;
+        }
+      else
+        terms[audit_stress_work] = terms[audit_material_work];
+
+      // Plastic work from the flow rule alone: Δεᵖ = Δε̄ᵖ (3/2) s_n+1/q_n+1
+      // (radial return, eq. 12-16), with the same σ̄ (trapezoidal, like Δε's work).
+      terms[audit_plastic_work] = 0;
+      const double dp = r.equivalent_plastic_strain - point.committed_equivalent_plastic_strain();
+      if (dp > 0)
+        {
+          const auto   s  = deviator(r.stress);
+          const double qn = std::sqrt(1.5 * (s * s));
+          if (qn > 0)
+            terms[audit_plastic_work] = dp * 1.5 * (sigma_bar * s) / qn * dv_half;
+        }
+
+      // Thermal terms: the expansion's work σ̄ : βΔT I and the energy the
+      // stress σ_n gains or loses because the moduli change from T_n to T_n+1.
+      const MaterialModel &model = *context.materials->at(cell->material_id());
+      const auto          *j2    = dynamic_cast<const J2Model *>(&model);
+      const double         T_new = context.has_temperature_field() ?
+                                     (*context.material_temperature)(cell, q) :
+                                     increment.temperature;
+      const double T_old = context.has_temperature_field() ?
+                             (*context.material_temperature_old)(cell, q) :
+                             increment.temperature;
+      double K_new = model.bulk_modulus(), G_new = model.shear_modulus();
+      double K_old = K_new, G_old = G_new, thermal_strain = 0;
+      if (j2)
+        {
+          K_new          = j2->elastic.bulk_modulus(T_new);
+          G_new          = j2->elastic.shear_modulus(T_new);
+          K_old          = j2->elastic.bulk_modulus(T_old);
+          G_old          = j2->elastic.shear_modulus(T_old);
+          thermal_strain = j2->elastic.thermal_strain(T_new, T_new - T_old);
+        }
+      const double W_old_at_old = elastic_energy_density(sigma_n, K_old, G_old);
+      const double W_old_at_new = elastic_energy_density(sigma_n, K_new, G_new);
+      const double W_new        = elastic_energy_density(r.stress, K_new, G_new);
+      terms[audit_thermal_work] =
+        (trace(sigma_bar) * thermal_strain - (W_old_at_new - W_old_at_old)) * dv_half;
+      // The heat source's plastic work Ẇirr Δt dv (eq. 21), reported beside the audit's.
+      terms[audit_heat_plastic_work] = r.plastic_work_rate * context.time_step * p.J * p.w;
+      // ∫ W dv changes with the volume alone: d(W J)/dt = J Ẇ + W J tr D.
+      terms[audit_volume_work] =
+        0.5 * (W_old_at_old + W_new) * (determinant(F) - determinant(F_old)) * p.w;
+    }
 
     template <int dim>
     bool MaterialPointUpdate<dim>::update(const CellIterator<dim> &cell, ScratchData<dim> &scratch,
@@ -77,13 +174,6 @@ namespace anvil
           p.point     = &point;
           p.adiabatic = increment.adiabatic;
           p.w         = formulation.weight(fe_values, q, R);
-          const double w = p.w;
-
-          // The work of the step: ∫ ½(σ_n + σ_n+1) : Δε dv½ and ∫ Ẇirr Δt dv (eq. 21).
-          copy.stress_work[q] = 0.5 * ((response.stress + point.committed_stress()) *
-                                       kin.strain_increment) *
-                                determinant(0.5 * (F + F_old)) * w;
-          copy.plastic_work[q] = response.plastic_work_rate * context.time_step * J * w;
           // Heat sources χẆirr + Ẇthel (eq. 20–22) and the temperature the point ends at.
           (*context.heat_sources)(cell, q) =
             response.plastic_dissipation_rate + response.thermoelastic_heating_rate;
@@ -92,6 +182,7 @@ namespace anvil
             (*context.material_temperature)(cell, q) =
               increment.temperature +
               (increment.adiabatic ? response.adiabatic_temperature_increment : 0.);
+          audit_terms(cell, q, F, F_old, p, increment, copy.audit[q]);
           copy.max_plastic_increment =
             std::max(copy.max_plastic_increment,
                      response.equivalent_plastic_strain - point.committed_equivalent_plastic_strain());

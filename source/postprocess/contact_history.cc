@@ -14,14 +14,14 @@ namespace anvil
 
     void start(const SimulationState<dim> &s, const bool append) override
     {
-      std::vector<std::string> columns = {"step", "time"};
+      std::vector<std::string> columns = {"step", "time [s]"};
       for (const auto &p : s.physics.contact_problem().get_pairs())
         {
           for (unsigned int d = 0; d < dim; ++d)
-            columns.push_back(p.name + "_F" + "xyz"[d]);
-          for (const auto *c : {"_normal", "_tangential", "_friction_work", "_active_nodes",
-                                "_sliding_nodes", "_max_penetration", "_heat_exchanged",
-                                "_friction_heat"})
+            columns.push_back(p.name + "_F" + "xyz"[d] + " [N]");
+          for (const auto *c : {"_normal [N]", "_tangential [N]", "_friction_work [N mm]",
+                                "_active_nodes", "_sliding_nodes", "_max_penetration [mm]",
+                                "_heat_exchanged [mJ]", "_friction_heat [mJ]"})
             columns.push_back(p.name + c);
         }
       csv.open(s.output_directory + "/contact.csv", columns, s.is_root(), append, s.time);

@@ -4,8 +4,10 @@ namespace anvil
 {
   /**
    * energy.csv and the energy and heat-balance sections of summary.json:
-   * the mechanical audit (external and internal work, kinetic, plastic and
-   * elastic energy, their balance) and the heat audit (content, its change,
+   * the mechanical audit's two balances (doc/energy_audit.md): the work of
+   * loads, supports and contact against kinetic energy and stress work
+   * (balance_error), and the stress work against elastic energy, plastic,
+   * thermal, hypoelastic-volume and F-bar work (stress_balance_error); and the heat audit (content, its change,
    * heat through boundaries, sources, plastic, thermoelastic and contact
    * heat, and the balance error — computed from independent sums, so it is
    * not zero by construction).
@@ -16,16 +18,20 @@ namespace anvil
   public:
     void start(const SimulationState<dim> &s, const bool append) override
     {
-      std::vector<std::string> columns = {"step", "time"};
+      // Works in N mm, heat in mJ (the same unit; per mm of depth in plane strain).
+      std::vector<std::string> columns = {"step", "time [s]"};
       if (s.physics.mechanics())
-        columns.insert(columns.end(), {"external_work", "internal_work", "kinetic_energy",
-                                       "plastic_work", "elastic_energy", "stress_work",
-                                       "balance_error"});
+        columns.insert(columns.end(),
+                       {"external_work [N mm]", "internal_work [N mm]", "kinetic_energy [N mm]",
+                        "plastic_work [N mm]", "elastic_energy [N mm]", "stress_work [N mm]",
+                        "balance_error [-]", "contact_work [N mm]", "flow_plastic_work [N mm]",
+                        "thermal_work [N mm]", "hypoelastic_volume_work [N mm]",
+                        "f_bar_work [N mm]", "stress_balance_error [-]"});
       if (s.physics.heat())
         columns.insert(columns.end(),
-                       {"heat_content", "heat_content_change", "boundary_heat_in", "source_heat",
-                        "plastic_heat", "thermoelastic_heat", "contact_heat",
-                        "heat_balance_error"});
+                       {"heat_content [mJ]", "heat_content_change [mJ]", "boundary_heat_in [mJ]",
+                        "source_heat [mJ]", "plastic_heat [mJ]", "thermoelastic_heat [mJ]",
+                        "contact_heat [mJ]", "heat_balance_error [mJ]"});
       csv.open(s.output_directory + "/energy.csv", columns, s.is_root(), append, s.time);
     }
 
@@ -36,7 +42,10 @@ namespace anvil
         {
           const auto &e = m->energy();
           row.insert(row.end(), {e.external_work, e.internal_work, e.kinetic, e.plastic_work,
-                                 e.elastic_energy, e.stress_work, e.balance_error()});
+                                 e.elastic_energy, e.stress_work, e.balance_error(),
+                                 e.contact_work, e.flow_plastic_work, e.thermal_work,
+                                 e.hypoelastic_volume_work,
+                                 e.f_bar_work, e.stress_balance_error()});
         }
       if (s.physics.heat())
         {
@@ -60,6 +69,12 @@ namespace anvil
           summary.set("energy", "elastic_energy", e.elastic_energy);
           summary.set("energy", "stress_work", e.stress_work);
           summary.set("energy", "balance_error", e.balance_error());
+          summary.set("energy", "contact_work", e.contact_work);
+          summary.set("energy", "flow_plastic_work", e.flow_plastic_work);
+          summary.set("energy", "thermal_work", e.thermal_work);
+          summary.set("energy", "hypoelastic_volume_work", e.hypoelastic_volume_work);
+          summary.set("energy", "f_bar_work", e.f_bar_work);
+          summary.set("energy", "stress_balance_error", e.stress_balance_error());
         }
       if (s.physics.heat())
         {
@@ -80,6 +95,7 @@ namespace anvil
   };
 
   ANVIL_REGISTER_POSTPROCESSOR(Energy, "energy",
-                               "energy.csv: work, kinetic, plastic and elastic energy and their "
-                               "balance (N mm); with heat, the heat balance (mJ).")
+                               "energy.csv: work, kinetic, plastic and elastic energy and the "
+                               "two balances of the energy audit (N mm); with heat, the heat "
+                               "balance (mJ).")
 } // namespace anvil

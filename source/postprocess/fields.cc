@@ -1,3 +1,7 @@
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/numerics/data_out.h>
 
 #include <anvil/postprocess/field_output.h>
@@ -5,6 +9,16 @@
 namespace anvil
 {
   using namespace dealii;
+
+  namespace
+  {
+    /// The fields that get a nodal (recovered) twin beside their cell values.
+    bool recovered(const std::string &name)
+    {
+      return name.rfind("stress_", 0) == 0 || name == "von_mises" || name == "pressure" ||
+             name == "equivalent_plastic_strain";
+    }
+  } // namespace
 
   /**
    * solution.pvd and fields/solution_*.pvtu: displacement (and velocity in
@@ -53,6 +67,9 @@ namespace anvil
           for (unsigned int i = 0; i < cell_fields.names.size(); ++i)
             data_out.add_data_vector(cell_fields.values[i], cell_fields.names[i],
                                      DataOut<dim>::type_cell_data);
+          recover(s, cell_fields);
+          for (unsigned int i = 0; i < nodal_names.size(); ++i)
+            data_out.add_data_vector(nodal_dofs, nodal_values[i], nodal_names[i]);
         }
       else
         {
@@ -73,10 +90,68 @@ namespace anvil
     }
 
     typename MechanicalProblem<dim>::CellFields cell_fields; // alive while data_out writes
+
+    // Nodal twins "<field>_nodal" of the cell fields (smooth pictures):
+    // patch averaging, each vertex gets the volume-weighted mean of the cell
+    // values of the cells around it, on every process the same (the sums
+    // over cells of other processes arrive through compress(add)). Across a
+    // material interface the average smears what the cell values keep sharp.
+    DoFHandler<dim>                            nodal_dofs;
+    FE_Q<dim>                                  nodal_fe{1};
+    std::vector<std::string>                   nodal_names;
+    std::vector<TrilinosWrappers::MPI::Vector> nodal_values;
+
+    void recover(const SimulationState<dim>                        &s,
+                 const typename MechanicalProblem<dim>::CellFields &fields)
+    {
+      nodal_dofs.reinit(s.triangulation);
+      nodal_dofs.distribute_dofs(nodal_fe);
+      const IndexSet owned = nodal_dofs.locally_owned_dofs();
+      IndexSet       relevant;
+      DoFTools::extract_locally_relevant_dofs(nodal_dofs, relevant);
+      std::vector<unsigned int> which;
+      nodal_names.clear();
+      for (unsigned int i = 0; i < fields.names.size(); ++i)
+        if (recovered(fields.names[i]))
+          {
+            which.push_back(i);
+            nodal_names.push_back(fields.names[i] + "_nodal");
+          }
+      // Writable with ghost entries: sums of cell contributions, then compress(add).
+      std::vector<TrilinosWrappers::MPI::Vector> sums(which.size() + 1);
+      for (auto &v : sums)
+        v.reinit(owned, relevant, s.communicator, true);
+      std::vector<types::global_dof_index> dofs(nodal_fe.n_dofs_per_cell());
+      for (const auto &cell : nodal_dofs.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(dofs);
+            const double volume = cell->measure();
+            for (const auto d : dofs)
+              {
+                sums.back()(d) += volume;
+                for (unsigned int k = 0; k < which.size(); ++k)
+                  sums[k](d) += volume * fields.values[which[k]][cell->active_cell_index()];
+              }
+          }
+      for (auto &v : sums)
+        v.compress(VectorOperation::add);
+      nodal_values.assign(which.size(), TrilinosWrappers::MPI::Vector(owned, relevant, s.communicator));
+      for (unsigned int k = 0; k < which.size(); ++k)
+        {
+          TrilinosWrappers::MPI::Vector mean(owned, s.communicator);
+          for (const auto d : owned)
+            mean(d) = sums[k](d) / sums.back()(d);
+          mean.compress(VectorOperation::insert);
+          nodal_values[k] = mean;
+        }
+    }
   };
 
   ANVIL_REGISTER_POSTPROCESSOR(Fields, "fields",
                                "solution.pvd: displacement, velocity, temperature, Cauchy "
                                "stress, von Mises, pressure, J, equivalent plastic strain, body, "
-                               "rank (VTU, every Field interval steps).")
+                               "rank (VTU, every Field interval steps); the stresses and the "
+                               "plastic strain also as nodal fields <name>_nodal (patch "
+                               "averages of the cell values).")
 } // namespace anvil

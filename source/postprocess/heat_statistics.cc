@@ -13,12 +13,12 @@ namespace anvil
     void start(const SimulationState<dim> &s, const bool append) override
     {
       csv.open(s.output_directory + "/thermal.csv",
-               {"step", "time", "time_step", "arkode_steps", "arkode_attempts",
+               {"step", "time [s]", "time_step [s]", "arkode_steps", "arkode_attempts",
                 "error_test_failures", "nonlinear_iterations", "nonlinear_failures",
                 "linear_setups", "linear_solves", "linear_iterations", "mass_solves",
-                "rhs_evaluations", "last_internal_step", "staggered_iterations",
-                "staggered_change", "staggered_contraction", "mechanics_wall_time",
-                "thermal_wall_time"},
+                "rhs_evaluations", "last_internal_step [s]", "staggered_iterations",
+                "staggered_change [K]", "staggered_contraction [-]", "mechanics_wall_time [s]",
+                "thermal_wall_time [s]"},
                s.is_root(), append, s.time);
     }
     void initial(const SimulationState<dim> &) override {}

@@ -13,7 +13,8 @@ namespace anvil
     void start(const SimulationState<dim> &s, const bool append) override
     {
       csv.open(s.output_directory + "/newton.csv",
-               {"step", "time", "iteration", "residual", "increment", "line_search", "converged"},
+               {"step", "time [s]", "iteration", "residual [N]", "increment [mm]", "line_search [-]",
+                "converged"},
                s.is_root(), append, s.time);
     }
     void initial(const SimulationState<dim> &) override {}

@@ -107,19 +107,19 @@ namespace anvil
 
     void start(const SimulationState<dim> &s, const bool append) override
     {
-      std::vector<std::string> columns = {"step", "time"};
+      std::vector<std::string> columns = {"step", "time [s]"};
       for (const auto &p : probes)
         {
           if (s.physics.mechanics())
             {
               for (unsigned int d = 0; d < dim; ++d)
-                columns.push_back(p.name + "_u" + "xyz"[d]);
+                columns.push_back(p.name + "_u" + "xyz"[d] + " [mm]");
               for (const auto *c : {"xx", "yy", "zz", "xy", "yz", "xz"})
-                columns.push_back(p.name + "_stress_" + c);
-              columns.push_back(p.name + "_equivalent_plastic_strain");
+                columns.push_back(p.name + "_stress_" + c + " [MPa]");
+              columns.push_back(p.name + "_equivalent_plastic_strain [-]");
             }
           if (s.physics.heat())
-            columns.push_back(p.name + "_temperature");
+            columns.push_back(p.name + "_temperature [K]");
         }
       csv.open(s.output_directory + "/probes.csv", columns, s.is_root(), append, s.time);
     }

@@ -1,5 +1,7 @@
 #include <deal.II/base/mpi.h>
 
+#include <cctype>
+
 #include <anvil/core/scene.h>
 #include <anvil/postprocess/interface.h>
 #include <anvil/postprocess/probe_points.h>
@@ -21,30 +23,64 @@ namespace anvil
               split_outside_parentheses(text.substr(open + 1, close - open - 1), ',')};
     }
 
-    // An optional constant after the call: "mean(temperature, upper) - 300".
-    double parse_offset(const std::string &item, const std::string &expr, const Scene &scene,
-                        const std::string &path)
+    // "probe(top, uy) - probe(bottom, uy) + 2" -> {(+1, "probe(top, uy)"),
+    // (-1, "probe(bottom, uy)"), (+1, "2")}: split at the signs outside
+    // parentheses that are not a number's exponent (1e-3).
+    std::vector<std::pair<double, std::string>> split_sum(const std::string &text)
     {
-      const auto        close = expr.rfind(')');
-      const std::string tail  = close == std::string::npos ? "" : trim(expr.substr(close + 1));
-      if (tail.empty())
-        return 0;
-      double c = 0;
+      std::vector<std::pair<double, std::string>> terms;
+      std::string                                 current;
+      double                                      sign  = 1;
+      int                                         depth = 0;
+      for (std::size_t k = 0; k < text.size(); ++k)
+        {
+          const char c = text[k];
+          depth += c == '(' ? 1 : c == ')' ? -1 : 0;
+          const bool exponent = k >= 2 && (text[k - 1] == 'e' || text[k - 1] == 'E') &&
+                                std::isdigit(static_cast<unsigned char>(text[k - 2])) &&
+                                trim(current).find('(') == std::string::npos;
+          if (depth == 0 && (c == '+' || c == '-') && !exponent)
+            {
+              if (!trim(current).empty())
+                terms.emplace_back(sign, trim(current));
+              else if (!terms.empty() || sign < 0)
+                return {}; // two signs in a row
+              sign    = c == '-' ? -1 : 1;
+              current.clear();
+              continue;
+            }
+          current += c;
+        }
+      if (trim(current).empty())
+        return {};
+      terms.emplace_back(sign, trim(current));
+      return terms;
+    }
+
+    bool parse_number(const std::string &text, double &value)
+    {
       try
         {
           std::size_t used = 0;
-          if (tail[0] != '+' && tail[0] != '-')
-            throw std::invalid_argument("");
-          c = std::stod(trim(tail.substr(1)), &used);
-          if (used != trim(tail.substr(1)).size())
-            throw std::invalid_argument("");
+          value            = std::stod(text, &used);
+          return used == text.size();
         }
       catch (...)
         {
-          scene.fail(path, "item '" + item + "': after the call only '+ number' or "
-                                             "'- number' may follow, not '" + tail + "'");
+          return false;
         }
-      return tail[0] == '-' ? -c : c;
+    }
+
+    // Units of the fields a quantity can read (mm, N, s, K; MPa).
+    std::string unit_of_field(const std::string &field)
+    {
+      if (field.rfind("stress_", 0) == 0 || field == "von_mises" || field == "pressure")
+        return "MPa";
+      if (field == "temperature")
+        return "K";
+      if (field.size() == 2 && field[0] == 'u')
+        return "mm";
+      return "-";
     }
   } // namespace
 
@@ -64,19 +100,33 @@ namespace anvil
         "expr one of reaction(boundary, x|y|z) [N], probe(name, ux|uy|uz|<field>), "
         "max(<field>), min(<field>), mean(<field>[, body]), contact(pair, "
         "x|y|z|normal|tangential|friction_work|active_nodes|sliding_nodes|"
-        "max_penetration) [N, N mm, mm], optionally followed by '+ c' or '- c' "
-        "(e.g. 'dT: mean(temperature, upper) - 300'); <field> is a cell field: "
-        "stress_xx..stress_zz, von_mises, pressure [MPa], J, "
-        "equivalent_plastic_strain, temperature [K] (heat scenes).");
+        "max_penetration) [N, N mm, mm], or a sum of these and numbers "
+        "(e.g. 'dT: mean(temperature, upper) - 300', 'gap: probe(top, uy) - probe(bottom, "
+        "uy)'); <field> is stress_xx..stress_zz, von_mises, pressure [MPa], J, "
+        "equivalent_plastic_strain, temperature [K] (heat scenes). max and min of the "
+        "temperature of a heat equation run over its nodal values (the extremes of the Q1 "
+        "field); of the other fields, and of a prescribed temperature, over cell averages "
+        "(mean over each cell's quadrature points), as the VTU's cell fields. Each result is "
+        "printed and written to summary.json with its unit (summary.json: units).");
     }
 
     void parse_parameters(ParameterHandler &prm, Scene &scene, const SceneContents<dim> &c) override;
-    bool applies(const SceneContents<dim> &) const override { return !quantities.empty(); }
+    bool applies(const SceneContents<dim> &) const override { return !expressions.empty(); }
     void finish(const SimulationState<dim> &s, bool failed) override;
     void add_to_summary(const SimulationState<dim> &, Summary &summary) const override
     {
       for (const auto &[name, value] : values)
         summary.set("quantities_of_interest", name, value);
+      // Beside, not inside: readers of quantities_of_interest keep their numbers.
+      for (const auto &e : expressions)
+        summary.set("units", e.name, e.unit);
+    }
+    std::vector<std::pair<std::string, std::string>> units() const override
+    {
+      std::vector<std::pair<std::string, std::string>> u;
+      for (const auto &e : expressions)
+        u.emplace_back(e.name, e.unit);
+      return u;
     }
     std::vector<std::pair<std::string, double>> results() const override { return values; }
 
@@ -87,15 +137,25 @@ namespace anvil
       types::boundary_id         boundary  = 0;
       int                        body      = -1;
       unsigned int               component = 0;
-      double                     offset    = 0; // "f(...) + c"
+      std::string                unit;
     };
-    Quantity parse_one(const std::string &item, const Scene &scene, const SceneContents<dim> &c,
-                       const std::vector<std::string> &fields) const;
+    /// name: a sum of calls and numbers, with the unit its calls share.
+    struct Expression
+    {
+      std::string                                 name, unit;
+      std::vector<std::pair<double, Quantity>>    calls;
+      double                                      constant = 0;
+    };
+    Quantity   parse_one(const std::string &item, const std::string &call, const Scene &scene,
+                         const SceneContents<dim> &c, const std::vector<std::string> &fields) const;
+    Expression parse_expression(const std::string &item, const Scene &scene,
+                                const SceneContents<dim> &c,
+                                const std::vector<std::string> &fields) const;
     double   evaluate(const Quantity &q, const SimulationState<dim> &s,
                       const typename MechanicalProblem<dim>::CellFields &fields) const;
 
     std::vector<ProbePoint<dim>>                probes;
-    std::vector<Quantity>                       quantities;
+    std::vector<Expression>                     expressions;
     std::vector<std::pair<std::string, double>> values;
   };
 
@@ -113,12 +173,12 @@ namespace anvil
     for (const auto &item :
          split_outside_parentheses(prm.get({"Output"}, "Quantities of interest"), ';'))
       if (!item.empty())
-        quantities.push_back(parse_one(item, scene, c, fields));
+        expressions.push_back(parse_expression(item, scene, c, fields));
   }
 
   template <int dim>
   typename Quantities<dim>::Quantity
-  Quantities<dim>::parse_one(const std::string &item, const Scene &scene,
+  Quantities<dim>::parse_one(const std::string &item, const std::string &call, const Scene &scene,
                              const SceneContents<dim> &c, const std::vector<std::string> &fields) const
   {
     const std::string qpath = "Output/Quantities of interest";
@@ -128,14 +188,11 @@ namespace anvil
     std::string known_fields;
     for (const auto &f : fields)
       known_fields += (known_fields.empty() ? "" : ", ") + f;
-    const auto colon = item.find(':');
-    if (colon == std::string::npos)
-      scene.fail(qpath, "item '" + item + "': expected 'name: expression'");
     Quantity q;
-    q.name               = trim(item.substr(0, colon));
-    const auto [f, args] = parse_call(item.substr(colon + 1));
-    q.offset             = parse_offset(item, item.substr(colon + 1), scene, qpath);
-    q.kind               = f;
+    const auto [f, args] = parse_call(call);
+    if (!f.empty() && trim(call.substr(call.rfind(')') + 1)).size() > 0)
+      scene.fail(qpath, "item '" + item + "': '" + call + "': expected '+' or '-' after ')'");
+    q.kind = f;
     auto component_of    = [&](const std::string &comp) -> unsigned int {
       for (unsigned int d = 0; d < dim; ++d)
         if (comp == std::string(1, "xyz"[d]))
@@ -151,6 +208,7 @@ namespace anvil
         q.target    = args[0];
         q.boundary  = c.geometry->boundary_id(args[0], scene.where(qpath));
         q.component = component_of(args[1]);
+        q.unit      = "N";
       }
     else if (f == "probe" && args.size() == 2)
       {
@@ -171,6 +229,7 @@ namespace anvil
                                               "(use mean(temperature) for a prescribed one)");
         if (q.field[0] == 'u' && q.field.size() == 2)
           q.component = component_of(q.field.substr(1));
+        q.unit = unit_of_field(q.field);
       }
     else if (f == "contact" && args.size() == 2)
       {
@@ -189,20 +248,67 @@ namespace anvil
                               (dim == 3 ? "|z" : "") +
                               "|normal|tangential|friction_work|active_nodes|sliding_nodes|"
                               "max_penetration)");
+        q.unit = args[1] == "friction_work" ? "N mm" :
+                 args[1] == "max_penetration" ? "mm" :
+                 args[1].find("nodes") != std::string::npos ? "" : "N";
       }
     else if ((f == "max" || f == "min") && args.size() == 1 && is_field(args[0]))
-      q.field = args[0];
+      {
+        q.field = args[0];
+        q.unit  = unit_of_field(q.field);
+      }
     else if (f == "mean" && (args.size() == 1 || args.size() == 2) && is_field(args[0]))
       {
         q.field = args[0];
         if (args.size() == 2)
           q.body = c.geometry->body_id(args[1], scene.where(qpath));
+        q.unit = unit_of_field(q.field);
       }
     else
       scene.fail(qpath, "item '" + item + "': expected reaction(boundary, x), "
                           "probe(name, field), max(field), min(field) or mean(field[, body]) "
-                          "with a field of this scene (" + known_fields + ")");
+                          "with a field of this scene (" + known_fields + "), or a sum of "
+                          "them and numbers");
     return q;
+  }
+
+  template <int dim>
+  typename Quantities<dim>::Expression
+  Quantities<dim>::parse_expression(const std::string &item, const Scene &scene,
+                                    const SceneContents<dim> &c,
+                                    const std::vector<std::string> &fields) const
+  {
+    const std::string qpath = "Output/Quantities of interest";
+    const auto        colon = item.find(':');
+    if (colon == std::string::npos || trim(item.substr(0, colon)).empty())
+      scene.fail(qpath, "item '" + item + "': expected 'name: expression'");
+    Expression e;
+    e.name           = trim(item.substr(0, colon));
+    const auto terms = split_sum(item.substr(colon + 1));
+    if (terms.empty())
+      scene.fail(qpath, "item '" + item + "': expected a call such as max(von_mises), or a sum "
+                                          "'a + b - 300' of calls and numbers");
+    std::vector<std::string> units;
+    for (const auto &[sign, text] : terms)
+      {
+        double number = 0;
+        if (text.find('(') == std::string::npos && parse_number(text, number))
+          e.constant += sign * number;
+        else
+          {
+            e.calls.emplace_back(sign, parse_one(item, text, scene, c, fields));
+            units.push_back(e.calls.back().second.unit);
+          }
+      }
+    if (e.calls.empty())
+      scene.fail(qpath, "item '" + item + "': a number alone is not a result; expected a call");
+    // A sum of quantities of different units has none; say so rather than guess.
+    e.unit = units.front();
+    for (const auto &u : units)
+      if (u != e.unit)
+        scene.fail(qpath, "item '" + item + "': adds '" + e.unit + "' and '" + u +
+                            "': the terms of a sum must have the same unit");
+    return e;
   }
 
   template <int dim>
@@ -221,8 +327,13 @@ namespace anvil
         fields.names.push_back("temperature");
         fields.values.push_back(s.physics.cell_temperature());
       }
-    for (const auto &q : quantities)
-      values.emplace_back(q.name, evaluate(q, s, fields) + q.offset);
+    for (const auto &e : expressions)
+      {
+        double value = e.constant;
+        for (const auto &[sign, q] : e.calls)
+          value += sign * evaluate(q, s, fields);
+        values.emplace_back(e.name, value);
+      }
   }
 
   template <int dim>
@@ -276,6 +387,18 @@ namespace anvil
         if (q.field == "pressure")
           return -trace(t) / 3;
         return t[q.field[7] - 'x'][q.field[8] - 'x'];
+      }
+    if ((q.kind == "max" || q.kind == "min") && q.field == "temperature" && s.physics.heat())
+      {
+        // Nodal values: the extremes of the Q1 temperature field itself (a
+        // cell average lies below the hottest node of its cell).
+        const auto &h       = *s.physics.heat();
+        double      extreme = q.kind == "max" ? -1e300 : 1e300;
+        for (const auto i : h.get_dof_handler().locally_owned_dofs())
+          extreme = q.kind == "max" ? std::max(extreme, double(h.temperature()(i))) :
+                                      std::min(extreme, double(h.temperature()(i)));
+        return q.kind == "max" ? Utilities::MPI::max(extreme, s.communicator) :
+                                 Utilities::MPI::min(extreme, s.communicator);
       }
     const auto &v = fields.values[std::find(fields.names.begin(), fields.names.end(), q.field) -
                                   fields.names.begin()];

@@ -23,6 +23,9 @@ namespace anvil
       "       anvil --material-point POINT.prm [--set 'Section/Entry=value']... [--check]\n"
       "                                              drive one material point along a path\n"
       "       anvil --material-point --print-parameters | --help   the same for a point file\n"
+      "       anvil --study STUDY.prm [--set 'Section/Entry=value']... [--jobs N] [--check]\n"
+      "                                              run a study: ladders, work-precision,\n"
+      "                                              stability maps (doc/study.md; anvil --study -h)\n"
       "\n"
       "  SCENE.prm      the scene to run (deal.II ParameterHandler format)\n"
       "  --set P=V      override entry P (a path like 'Time/End time') with V; repeatable\n"
@@ -41,6 +44,20 @@ namespace anvil
     {
       Simulator<dim>::declare_parameters(prm, scene.body_names(), scene.contact_pair_names(),
                                          scene.contact_tool_names());
+    }
+
+    // --help: a scene without contact still shows what a pair's and a
+    // tool's subsection hold, as Contact/<pair> and Contact/<tool>.
+    template <int dim>
+    void declare_with_templates(ParameterHandler &prm, const Scene &scene)
+    {
+      auto pairs = scene.contact_pair_names();
+      auto tools = scene.contact_tool_names();
+      if (pairs.empty())
+        pairs = {"<pair>"};
+      if (tools.empty())
+        tools = {"<tool>"};
+      Simulator<dim>::declare_parameters(prm, scene.body_names(), pairs, tools);
     }
 
     // Returns why the run stopped early, or "" (the Simulator is gone by then).
@@ -257,11 +274,24 @@ namespace anvil
         if (help || print)
           {
             Scene scene = filename.empty() ? Scene() : Scene(filename, overrides);
-            read_scene(scene);
+            if (help)
+              {
+                scene.read_shape();
+                if (scene.dimension() == 2)
+                  scene.read(declare_with_templates<2>);
+                else
+                  scene.read(declare_with_templates<3>);
+              }
+            else
+              read_scene(scene);
             if (root)
               {
                 if (help)
-                  std::cout << usage << "\nParameters (with defaults, patterns and documentation):\n\n";
+                  std::cout << usage
+                            << "\nParameters (with defaults, patterns and documentation). "
+                               "Contact/<pair> and Contact/<tool> stand for the subsection of "
+                               "each name listed in Contact/Pairs and Contact/Tools; Bodies/body "
+                               "for each name in Bodies/Names:\n\n";
                 scene.parameters().print_parameters(std::cout, help ? ParameterHandler::Text
                                                                     : ParameterHandler::PRM);
               }

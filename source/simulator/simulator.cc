@@ -7,6 +7,7 @@
 #include <anvil/core/instantiate.h>
 #include <anvil/simulator/simulator.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -15,6 +16,19 @@
 namespace anvil
 {
   using namespace dealii;
+
+  namespace
+  {
+    /// Resident memory of this process now, MB (/proc/self/status VmRSS).
+    double resident_memory_mb()
+    {
+      std::ifstream status("/proc/self/status");
+      for (std::string line; std::getline(status, line);)
+        if (line.rfind("VmRSS:", 0) == 0)
+          return std::stod(line.substr(6)) / 1024.;
+      return 0;
+    }
+  } // namespace
 
   template <int dim>
   void Simulator<dim>::declare_parameters(ParameterHandler               &prm,
@@ -72,7 +86,10 @@ namespace anvil
       if (std::find(scene.body_names().begin(), scene.body_names().end(), name) ==
           scene.body_names().end())
         scene.fail("Bodies/Names", "does not list the mesh body '" + name +
-                                     "' (the mesh has: " + geometry.list_body_names() + ")");
+                                     "' (the mesh has: " + geometry.list_body_names() +
+                                     "; a generated mesh's body is named by Geometry/Body "
+                                     "name, blocks by Geometry/Blocks, a gmsh mesh by its "
+                                     "physical names)");
 
     coupling = prm.get({"Physics"}, "Coupling");
     scheme   = CouplingSchemeRegistry<dim>::instance().create(coupling);
@@ -241,7 +258,8 @@ namespace anvil
   template <int dim>
   bool Simulator<dim>::run_steps()
   {
-    wall_start = MPI_Wtime();
+    wall_start         = MPI_Wtime();
+    baseline_memory_mb = resident_memory_mb();
     timer = std::make_unique<TimerOutput>(mpi_communicator, pcout, TimerOutput::never,
                                           TimerOutput::wall_times);
     setup();
@@ -335,9 +353,16 @@ namespace anvil
     if (!quiet)
       {
         timer->print_summary();
+        std::map<std::string, std::string> units;
+        for (const auto &o : outputs)
+          for (const auto &[name, unit] : o->units())
+            units[name] = unit;
         for (const auto &[name, value] : quantities_of_interest())
-          pcout << "  " << name << " = " << std::setprecision(10) << value << std::endl;
+          pcout << "  " << name << " = " << std::setprecision(10) << value
+                << (units[name].empty() || units[name] == "-" ? "" : " " + units[name])
+                << std::endl;
       }
+    print_results();
     return true;
   }
 
@@ -394,11 +419,23 @@ namespace anvil
   template <int dim>
   void Simulator<dim>::print_step(const StepReport<dim> &r, const double t, const double step) const
   {
-    const double       elapsed = MPI_Wtime() - wall_start;
-    const double       eta     = t > 0 ? elapsed / t * (time.end_time - t) : 0;
+    // The ETA from the rate of the last few steps (wall clock per simulated
+    // second, the failed attempts in between included): after a cut-back
+    // the steps are small and the rest of the run is that slow too, which an
+    // average since the start would hide.
+    const double now = MPI_Wtime();
+    recent_steps.emplace_back(now, t);
+    if (recent_steps.size() > 6)
+      recent_steps.erase(recent_steps.begin());
+    const auto  &first = recent_steps.size() > 1 ? recent_steps.front() :
+                                                   std::make_pair(wall_start, 0.);
+    const double rate  = t > first.second ? (now - first.first) / (t - first.second) : 0;
+    const double eta   = rate * (time.end_time - t);
     std::ostringstream line;
     line << "step " << std::setw(5) << statistics.steps << "  t = " << std::scientific
-         << std::setprecision(4) << t << " s  dt = " << std::setprecision(2) << step << " s";
+         << std::setprecision(4) << t << " / " << std::setprecision(3) << time.end_time << " s ("
+         << std::fixed << std::setprecision(1) << std::setw(5) << 100 * t / time.end_time
+         << " %)  dt = " << std::scientific << std::setprecision(2) << step << " s";
     if (physics.mechanics())
       line << "  Newton " << std::setw(2) << r.mechanics().iterations << " |R| "
            << std::setprecision(1) << r.mechanics().residuals.front() << " -> "
@@ -410,6 +447,36 @@ namespace anvil
            << r.staggered_change << " K, contraction " << std::setprecision(2) << r.contraction;
     line << "  ETA " << std::fixed << std::setprecision(1) << eta << " s";
     pcout << line.str() << std::endl;
+  }
+
+  template <int dim>
+  void Simulator<dim>::print_results() const
+  {
+    if (quiet || Utilities::MPI::this_mpi_process(mpi_communicator) != 0)
+      return;
+    // What is on disk now (a restart's files included), files first, then
+    // each directory with its number of files.
+    std::vector<std::string> files, directories;
+    std::error_code          ec;
+    for (const auto &e : std::filesystem::directory_iterator(output_dir, ec))
+      {
+        const std::string name = e.path().filename().string();
+        if (e.is_directory())
+          {
+            const auto n = std::distance(std::filesystem::directory_iterator(e.path(), ec),
+                                         std::filesystem::directory_iterator());
+            directories.push_back(name + "/ (" + std::to_string(n) + ")");
+          }
+        else if (name[0] != '.')
+          files.push_back(name);
+      }
+    std::sort(files.begin(), files.end());
+    std::sort(directories.begin(), directories.end());
+    files.insert(files.end(), directories.begin(), directories.end());
+    std::string list;
+    for (const auto &f : files)
+      list += (list.empty() ? "" : ", ") + f;
+    std::cout << "anvil: results in " << output_dir << ": " << list << std::endl;
   }
 
   ANVIL_INSTANTIATE_CLASS(Simulator)

@@ -53,10 +53,20 @@ namespace anvil
     s.set("peak_memory_MB", memory);
     const double all_dofs =
       (mechanical ? mechanical->n_dofs() : 0) + (thermal ? thermal->n_dofs() : 0);
-    s.set("memory_per_dof_bytes", memory * 1024. * 1024. / std::max<double>(1, all_dofs));
+    // Above the memory before the mesh (MPI, deal.II, Trilinos: ~100 MB per
+    // process), which would otherwise dominate a small scene's figure.
+    const double baseline = Utilities::MPI::sum(baseline_memory_mb, mpi_communicator);
+    s.set("memory_per_dof_bytes",
+          std::max(0., memory - baseline) * 1024. * 1024. / std::max<double>(1, all_dofs));
     const auto now = state(current_time, statistics.steps);
     for (const auto &o : outputs)
       o->add_to_summary(now, s);
+    // Units beside the numbers (the quantities of interest add theirs above).
+    s.set("units", "time", "s");
+    s.set("units", "wall_time", "s");
+    s.set("units", "peak_memory_MB", "MB");
+    s.set("units", "energy", "N mm");
+    s.set("units", "heat", "mJ");
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
       s.write(output_dir + "/summary.json");
   }

@@ -9,6 +9,7 @@
 
 #include "arkode_integrator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <string>
@@ -68,6 +69,27 @@ namespace anvil
           inner_iterations += n;
         }
       };
+      /// The integration in progress on this thread (ARKode's step hook has
+      /// no data of ours: deal.II owns its user data).
+      struct StepRecord
+      {
+        double time         = 0; // end of the last accepted step
+        double largest_step = 0;
+      };
+      thread_local StepRecord *current_record = nullptr;
+
+      /// After every accepted internal step (at its end time t): remember the
+      /// largest. ARKode calls it before it updates its own last-step record.
+      int record_step(realtype t, N_Vector, void *)
+      {
+        if (current_record)
+          {
+            current_record->largest_step = std::max(current_record->largest_step,
+                                                    double(t) - current_record->time);
+            current_record->time = t;
+          }
+        return 0;
+      }
     } // namespace
 
     IntegratorStatistics integrate(ImplicitSystem &system, Vector &y, const double t0,
@@ -148,7 +170,10 @@ namespace anvil
           return system.solve_mass(x, b, tol);
         });
       };
+      StepRecord record;
+      record.time = t0;
       ode.custom_setup = [&](void *mem) {
+        ARKStepSetPostprocessStepFn(mem, record_step);
         ARKStepSetMaxNumSteps(mem, settings.max_internal_steps);
         ARKStepSetInterpolantType(mem, ARK_INTERP_LAGRANGE);
         ARKStepSetStopTime(mem, t1);
@@ -167,6 +192,7 @@ namespace anvil
           throw EvolveFailed("ARKode stopped at t = " + std::to_string(t));
       };
 
+      current_record = &record;
       try
         {
           ode.solve_ode(y);
@@ -178,6 +204,9 @@ namespace anvil
           stats.failure = message.empty() ? std::string(e.what()) :
                                             std::string(e.what()) + ": " + message;
         }
+
+      current_record = nullptr;
+      stats.largest_step = record.largest_step;
 
       void *mem = ode.get_arkode_memory();
       long  n   = 0, nfe = 0, nfi = 0;

@@ -58,6 +58,9 @@ namespace anvil
                     nonlinear_failures = 0, linear_setups = 0, linear_solves = 0,
                     linear_iterations = 0, rhs_evaluations = 0, mass_solves = 0;
       double last_step = 0;
+      /// The largest accepted internal step: where the next call should start
+      /// (last_step is usually cut short by the end time, by any amount).
+      double largest_step = 0;
     };
 
     /**

@@ -448,7 +448,12 @@ namespace anvil
         temperature_ghosted = old_temperature_ghosted;
         return stats;
       }
-    last_internal_step = s.last_step;
+    // The next step starts from the largest step ARKode took here, not from
+    // the last one: the end time cuts that one short by an amount that jumps
+    // (from ~0 to a full step) with the last digits of the solution, and a
+    // tiny initial step makes the next solve take several more steps. So one
+    // round-off difference (e.g. 1 vs 2 processes) changed every later step.
+    last_internal_step = s.largest_step > 0 ? s.largest_step : s.last_step;
     apply_dirichlet(time_new, y);
     hanging.distribute(y);
     solution            = y;

@@ -58,7 +58,13 @@ int main(int argc, char **argv)
       });
 
       anvil::Simulator<2> simulator(scene, MPI_COMM_WORLD);
-      simulator.run();
+      // false: the run stopped on a step it could not complete (its last
+      // converged state is written); its quantities would not be results.
+      if (!simulator.run())
+        {
+          std::cerr << "step-1: simulation stopped: " << simulator.failure() << std::endl;
+          return 3;
+        }
 
       // The reaction force is one of the scene's quantities of interest.
       double pull = 0;

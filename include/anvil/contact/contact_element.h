@@ -138,6 +138,24 @@ namespace anvil
                                        bool                                   tangent);
 
     /**
+     * Slave node behind a concave corner of a deformable master, in the region
+     * below the corner's vertex where it projects into neither face (the
+     * caller detects it): the closest master point is the vertex, the normal
+     * n = (x_v − x_s)/|x_v − x_s| and the gap −|x_v − x_s|, continuous with
+     * node_to_segment() on both faces at the region's edges. Friction as
+     * above, relative to the vertex. Residual and tangent ordered
+     * [slave (dim), vertex (dim)].
+     */
+    template <int dim>
+    ContactResult<dim> node_to_vertex(const dealii::Point<dim> &slave,
+                                      const dealii::Point<dim> &slave_old,
+                                      const dealii::Point<dim> &vertex,
+                                      const dealii::Point<dim> &vertex_old,
+                                      const NodeState<dim>     &state,
+                                      const FrictionLaw        &law,
+                                      bool                      tangent);
+
+    /**
      * Slave node against a rigid tool at time @p t (the step being from
      * @p t_old): gap and normal from RigidTool::project(), the tangential
      * increment relative to the tool's translation. The residual and tangent

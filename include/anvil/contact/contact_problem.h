@@ -221,6 +221,10 @@ namespace anvil
     /// (self-contact: not the node's own surface next to it, self_contact.h).
     bool may_touch(unsigned int p, unsigned int node, unsigned int face,
                    const std::vector<dealii::Point<dim>> &x) const;
+    /// Among the (face, end) pairs a node lies behind and beyond, one whose end
+    /// vertex another shares (the node is below a concave corner); face -1: none.
+    std::pair<int, unsigned int>
+    concave_corner(const std::vector<std::pair<unsigned int, unsigned int>> &beyond_end) const;
     /// Node states keyed by (pair, pass, node).
     using Key = std::tuple<unsigned int, unsigned int, unsigned int>;
     struct Trial

@@ -18,6 +18,7 @@
 
 #include <array>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -67,6 +68,9 @@ namespace anvil
       dealii::Tensor<1, dim> gravity;
       bool                   body_force = false;
 
+      /// The bodies' material models (the energy audit reads their elastic laws).
+      const std::map<dealii::types::material_id, std::shared_ptr<const MaterialModel>> *materials =
+        nullptr;
       PointData<std::shared_ptr<MaterialPoint>> *points                   = nullptr;
       PointData<double>                         *heat_sources             = nullptr;
       PointData<double>                         *thermoelastic_sources    = nullptr;
@@ -131,6 +135,18 @@ namespace anvil
       std::vector<dealii::Tensor<1, dim>> face_u;
     };
 
+    /// The energy audit's terms at a point over a step (doc/energy_audit.md), N mm.
+    enum AuditTerm : unsigned int
+    {
+      audit_stress_work,     // σ̄ : Δε dv½, true kinematics (what f_int works with)
+      audit_material_work,   // σ̄ : Δε̄ dv½, what the material sees (F̄ with F-bar)
+      audit_plastic_work,    // σ̄ : Δεᵖ dv½ (flow rule)
+      audit_thermal_work,    // [σ̄ : βΔT I − (W(σ_n, T_n+1) − W(σ_n, T_n))] dv½
+      audit_volume_work,     // ½(W_n + W_n+1)(J_n+1 − J_n) dV
+      audit_heat_plastic_work, // Ẇirr Δt dv (eq. 21, the heat source's plastic work)
+      n_audit_terms
+    };
+
     /// What one cell adds to the global system, and its per-cell scalars.
     struct CopyData
     {
@@ -143,10 +159,10 @@ namespace anvil
       dealii::Vector<double>     inertia;  // M a_{n+1} (dynamics)
       std::vector<dealii::types::global_dof_index> dof_indices;
 
-      /// Per point: ∫ ½(σ_n + σ_n+1) : Δε dv½ and Ẇirr Δt dv (summed by the
-      /// copier point by point, in cell order: the same sums on any number
-      /// of threads).
-      std::vector<double> stress_work, plastic_work;
+      /// Per point, the energy audit's terms of the step (AuditTerm; summed by
+      /// the copier point by point, in cell order: the same sums on any
+      /// number of threads).
+      std::vector<std::array<double, n_audit_terms>> audit;
       double              max_plastic_increment = 0;
 
       /// An element inverted or a material point failed (then the rest is not used).

@@ -92,6 +92,15 @@ namespace anvil
       bool update(const CellIterator<dim> &cell, ScratchData<dim> &scratch, CopyData &copy) const;
 
     private:
+      /// The energy audit's terms of point @p q over the step (AuditTerm), after its update.
+      void audit_terms(const CellIterator<dim>    &cell,
+                       unsigned int                q,
+                       const dealii::Tensor<2, 3> &F,
+                       const dealii::Tensor<2, 3> &F_old,
+                       const PointValues          &p,
+                       const MaterialIncrement    &increment,
+                       std::array<double, n_audit_terms> &terms) const;
+
       const Context<dim> &context;
       const FBar<dim>     f_bar;
     };

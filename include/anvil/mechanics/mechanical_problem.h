@@ -18,6 +18,7 @@
 #include <anvil/material/material_point.h>
 #include <anvil/mechanics/boundary_conditions.h>
 
+#include <array>
 #include <functional>
 #include <map>
 #include <memory>
@@ -141,18 +142,31 @@ namespace anvil
     /// Reaction force on the named boundary (force the support exerts on the body), N.
     dealii::Tensor<1, dim> reaction(dealii::types::boundary_id boundary) const;
 
-    /// The energy audit, accumulated over accepted steps (N·mm).
+    /**
+     * The energy audit, accumulated over accepted steps (N·mm), as two
+     * balances whose sides are computed by different routes (doc/energy_audit.md):
+     *   work:   W_ext + K₀ = K + W_σ + W_contact                 (nodes vs points)
+     *   stress: W_σ = ΔE_el + W_p,flow + W_th − V_hypo + W_F̄     (points, per term)
+     */
     struct Energy
     {
-      double external_work  = 0; // loads and supports, trapezoidal in time
-      double internal_work  = 0; // ½(f_int,n + f_int,n+1) · Δu
-      double stress_work    = 0; // ∫ ½(σ_n + σ_n+1) : Δε dv½ (quadrature points)
+      double external_work  = 0; // loads (f_ext) everywhere + supports' reactions at constrained dofs, trapezoidal
+      double internal_work  = 0; // ½(f_int,n + f_int,n+1) · Δu (f_int with the contact forces)
+      double contact_work   = 0; // ½(f_c,n + f_c,n+1) · Δu: work the bodies do on the contact
+      double stress_work    = 0; // ∫ σ̄ : Δε dv½, σ̄ = ½(ΔR σ_n ΔRᵀ + σ_n+1), true kinematics
       double kinetic        = 0; // ½ vᵀ M v
       double initial_kinetic = 0;
-      double plastic_work   = 0; // ∫∫ Ẇirr dv dt (eq. 21)
-      double elastic_energy = 0; // ∫ ½ σ : H⁻¹ : σ dv, from the stresses (a state function)
-      /// |W_ext − W_int − ΔK| relative to the largest of them.
+      double plastic_work   = 0; // ∫∫ Ẇirr dv dt (eq. 21): the plastic work the heat receives
+      double flow_plastic_work = 0; // ∫ σ̄ : Δεᵖ dv½ with Δεᵖ = Δε̄ᵖ (3/2) s/q (flow rule), the audit's
+      double elastic_energy = 0; // ∫ ½ σ : H(T)⁻¹ : σ dv, from the stresses (a state function)
+      double initial_elastic_energy = 0; // every scene starts unstressed
+      double thermal_work   = 0; // ∫ [σ̄ : βΔT I − (W(σ_n, T_n+1) − W(σ_n, T_n))] dv½
+      double hypoelastic_volume_work = 0; // ∫ ½(W_n + W_n+1)(J_n+1 − J_n) dV: what ∫W dv gains by volume change alone
+      double f_bar_work     = 0; // ∫ σ̄ : (Δε − Δε̄) dv½: F-bar's stress power beyond the material's
+      /// |W_ext + K₀ − K − W_σ − W_contact| relative to the largest term.
       double balance_error() const;
+      /// |W_σ − (E_el − E_el,0) − W_p,flow − W_th + V_hypo − W_F̄| relative to the largest term.
+      double stress_balance_error() const;
     };
     const Energy &energy() const { return energy_audit; }
     /**
@@ -271,7 +285,7 @@ namespace anvil
     void lumped_mass(dealii::TrilinosWrappers::MPI::Vector &m) const;
     /// ½ vᵀ M v with the scene's mass (consistent or lumped).
     double kinetic_energy(const dealii::TrilinosWrappers::MPI::Vector &v) const;
-    /// ∫ ½ (p²/K + s:s/2G) dv over the current stresses (reference moduli).
+    /// ∫ ½ (p²/K(T) + s:s/2G(T)) dv over the committed stresses and temperatures.
     double elastic_strain_energy() const;
     /// a_{n+1} from u_{n+1} by Newmark: (u − uₙ − Δt vₙ)/(βΔt²) − (½ − β)/β aₙ.
     double newmark_acceleration(double u, double u_old, double v_old, double a_old) const;
@@ -320,9 +334,15 @@ namespace anvil
     bool                                        adiabatic_split = false;
     // The temperature each point ended its last update at (current and committed).
     PointData<double>                           material_temperature, material_temperature_old;
-    double step_internal_work = 0, step_plastic_work = 0, max_plastic_increment = 0;
+    double max_plastic_increment = 0;
+    /// The step's audit sums over the points (MechanicsAssembly::CopyData::audit).
+    std::array<double, 6> step_audit{}; // MechanicsAssembly::n_audit_terms
+    /// Test only (ANVIL_AUDIT_OMIT=term): 1 + the AuditTerm left out of the sums, 0 none.
+    unsigned int audit_omission = 0;
     Energy energy_audit;
     dealii::TrilinosWrappers::MPI::Vector external_force_old, reaction_force, reaction_force_old;
+    /// Contact forces alone (also in internal_force), for the contact's work.
+    dealii::TrilinosWrappers::MPI::Vector contact_force, contact_force_old;
 
     // Dynamics: generalized-α parameters, mass and the state at t_n.
     double alpha_m = 0, alpha_f = 0, newmark_beta = 0.25, newmark_gamma = 0.5;

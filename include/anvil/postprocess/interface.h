@@ -105,6 +105,8 @@ namespace anvil
     /// Named results evaluated by finish() (quantities of interest), printed
     /// at the end of a run and returned by Simulator::quantities_of_interest().
     virtual std::vector<std::pair<std::string, double>> results() const { return {}; }
+    /// The unit of each of results() by name ("K", "N mm"; "-" dimensionless).
+    virtual std::vector<std::pair<std::string, std::string>> units() const { return {}; }
 
     /// State to carry through a checkpoint (e.g. the records of a .pvd file),
     /// as named entries "key value..." (rank 0 writes; every rank reads).

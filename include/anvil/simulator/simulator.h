@@ -73,6 +73,8 @@ namespace anvil
     SimulationState<dim> state(double t, unsigned int step, bool last = false) const;
     void print_start() const;
     void print_step(const StepReport<dim> &r, double t, double step) const;
+    /// The last line of a run: where the results are and what was written.
+    void print_results() const;
     /// Every output's accepted() under the Output timer.
     void output_step(const StepReport<dim> *r, double t, bool last);
     void write_summary(const std::string &status);
@@ -108,6 +110,12 @@ namespace anvil
     bool        quiet        = false;
     double      current_time = 0;
     double      wall_start   = 0;
+    // Resident memory before the mesh and the physics (MPI, libraries): the
+    // baseline subtracted from the peak for memory_per_dof_bytes.
+    double      baseline_memory_mb = 0;
+    // (wall clock, time) at the last accepted steps: the ETA from the recent
+    // rate, failed attempts included (honest during a cut-back cascade).
+    mutable std::vector<std::pair<double, double>> recent_steps;
     std::string failure_reason;
   };
 
