@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 namespace anvil
@@ -279,27 +278,44 @@ namespace anvil
       {
         std::string msg = exception_text(e);
         // deal.II says "Line <12> of file <scene.prm>: ..." — reformat as file:line.
-        const std::regex  line_re("Line <([0-9]+)> of file <([^>:]*)>?:?\\s*(.*)");
-        std::smatch       m;
-        if (std::regex_search(msg, m, line_re))
+        // Read by hand, not with std::regex: it recurses per character and
+        // overflows the stack on the 100 000-character lines a hostile file can hold.
+        const auto line_at  = msg.find("Line <");
+        const auto line_end = msg.find("> of file <", line_at);
+        const auto file_end = msg.find_first_of(">:", line_end + 11);
+        if (line_at != std::string::npos && line_end != std::string::npos &&
+            file_end != std::string::npos && line_end > line_at + 6 &&
+            msg.find_first_not_of("0123456789", line_at + 6) == line_end)
           {
-            // Copies: m points into msg, which is rewritten below.
-            const std::string  line_text = m[1].str(), file_text = m[2].str(), text = m[3].str();
-            const unsigned int number    = std::stoul(line_text);
+            auto rest = file_end;
+            if (msg[rest] == '>')
+              ++rest;
+            if (rest < msg.size() && msg[rest] == ':')
+              ++rest;
+            const std::string  line_text = msg.substr(line_at + 6, line_end - line_at - 6);
+            const std::string  file_text = msg.substr(line_end + 11, file_end - line_end - 11);
+            const std::string  text      = trim(msg.substr(rest));
+            const unsigned int number    = std::stoul(line_text.substr(0, 9));
             const std::string  at        = file_text + ":" + line_text + ": ";
             msg                          = at + text;
             // A misspelled entry or subsection: name where, and the nearest declared names.
-            const auto         stack  = sections_before_line(file, number);
-            const std::regex   entry_re("No entry with name <([^>]*)> was declared");
-            const std::regex   section_re("There is no such subsection to be entered: (.*)$");
-            std::smatch        w;
-            if (std::regex_search(text, w, entry_re))
-              msg = at + "no entry '" + w[1].str() + "' in " + section_name(stack) +
-                    suggestion(w[1].str(), declared_names(p, stack, false));
-            else if (std::regex_search(text, w, section_re))
+            const auto        stack         = sections_before_line(file, number);
+            const std::string entry_head    = "No entry with name <";
+            const std::string section_head  = "There is no such subsection to be entered: ";
+            const auto        entry_at      = text.find(entry_head);
+            const auto        entry_end     = text.find("> was declared", entry_at);
+            const auto        section_at    = text.find(section_head);
+            if (entry_at != std::string::npos && entry_end != std::string::npos)
+              {
+                const std::string name =
+                  text.substr(entry_at + entry_head.size(), entry_end - entry_at - entry_head.size());
+                msg = at + "no entry '" + name + "' in " + section_name(stack) +
+                      suggestion(name, declared_names(p, stack, false));
+              }
+            else if (section_at != std::string::npos)
               {
                 // deal.II names the path joined by '.': keep the last part.
-                std::string name = trim(w[1].str());
+                std::string name = trim(text.substr(section_at + section_head.size()));
                 std::string path;
                 for (const auto &part : stack)
                   path += part + "/";

@@ -269,6 +269,9 @@ namespace anvil
   template <int dim>
   void Geometry<dim>::parse_parameters(ParameterHandler &prm, const Scene &scene)
   {
+    for (const auto *entry : {"Geometry/Mesh file", "Geometry/Global refinements",
+                              "Geometry/Transformation", "Geometry/Random distortion"})
+      locations[entry] = scene.where(entry);
     prm.enter_subsection("Geometry");
     type                  = prm.get("Type");
     global_refinements    = prm.get_integer("Global refinements");
@@ -431,6 +434,7 @@ namespace anvil
   void Geometry<dim>::create(parallel::distributed::Triangulation<dim> &triangulation) const
   {
     create_coarse(triangulation);
+    check_size(triangulation.n_global_active_cells());
     triangulation.refine_global(global_refinements);
     finish_loaded(triangulation);
   }
@@ -447,6 +451,8 @@ namespace anvil
           return q;
         },
         triangulation);
+    throw_recorded_input_error(triangulation.get_communicator());
+    check_cells(triangulation);
   }
 
   template <int dim>
@@ -458,11 +464,22 @@ namespace anvil
     std::ifstream in(mesh_file);
     if (!in)
       throw InputError(mesh_file + ": cannot read the mesh file (Geometry/Mesh file)");
+    std::string version;
+    std::getline(in, version) && std::getline(in, version);
+    if (version.rfind("2.", 0) == 0)
+      check_msh22(in);
+    in.clear();
+    in.seekg(0);
     GridIn<dim> grid_in;
     grid_in.attach_triangulation(tria);
     try
       {
         grid_in.read_msh(in);
+      }
+    catch (const std::bad_alloc &)
+      {
+        throw InputError(mesh_file + ": cannot read this mesh (Geometry/Mesh file): it declares "
+                                     "more nodes or elements than memory holds (a wrong count?)");
       }
     catch (const ExceptionBase &e)
       {

@@ -1,3 +1,4 @@
+#include <deal.II/base/utilities.h>
 #include <anvil/core/scene.h>
 #include <anvil/material/elastic_law.h>
 
@@ -58,11 +59,24 @@ namespace anvil
                  "and 'Bulk modulus': expected exactly one of them > 0 (the other 0)");
     K0                    = K > 0 ? K : E / (3. * (1. - 2. * nu));
     G0                    = 3. * K0 * (1. - 2. * nu) / (2. * (1. + nu));
+    // Far above any solid (steel: K = 1.7e5 MPa), yet below where a unit
+    // strain's stress squared (J2 norms, energies) leaves double precision.
+    const double modulus_limit = 1e15;
+    if (!(K0 + 4. / 3. * G0 <= modulus_limit))
+      scene.fail(path + (K > 0 ? "/Bulk modulus" : "/Young's modulus"),
+                 "= " + Utilities::to_string(K > 0 ? K : E) + " MPa gives the P-wave modulus K + 4G/3 = " +
+                   Utilities::to_string(K0 + 4. / 3. * G0) + " MPa: expected at most " +
+                   Utilities::to_string(modulus_limit) +
+                   " MPa (stresses and their squares must stay finite)");
     density               = prm.get_double("Density");
     heat_capacity         = prm.get_double("Heat capacity");
     beta0                 = prm.get_double("Thermal expansion");
     capacity_at_constant_volume = prm.get("Heat capacity at") == "constant volume";
     reference_temperature = prm.get_double("Reference temperature");
+    if (!(reference_temperature > 0))
+      scene.fail(path + "/Reference temperature",
+                 "= " + Utilities::to_string(reference_temperature) +
+                   " K: expected an absolute temperature > 0 K");
     taylor_quinney        = prm.get_double("Taylor-Quinney coefficient");
     prm.enter_subsection("Modulus temperature factor");
     factor.parse_parameters(prm, scene, path + "/Modulus temperature factor", reference_temperature);

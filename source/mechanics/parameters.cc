@@ -95,6 +95,9 @@ namespace anvil
     f_bar             = prm.get("Element") == "F-bar";
     axisymmetric      = dim == 2 && prm.get("Two-dimensional model") == "axisymmetric";
     temperature       = prm.get_double("Temperature");
+    if (!(temperature > 0))
+      scene.fail("Mechanics/Temperature", "= " + std::to_string(temperature) +
+                                            " K: expected an absolute temperature > 0 K");
     gravity           = prm.get("Gravity");
     maximum_plastic_increment = prm.get_double("Maximum plastic strain increment");
     prm.enter_subsection("Dynamics");

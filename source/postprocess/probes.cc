@@ -1,6 +1,13 @@
+#include <deal.II/base/mpi.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <deal.II/grid/grid_tools.h>
+
 #include <anvil/core/scene.h>
 #include <anvil/postprocess/interface.h>
 #include <anvil/postprocess/probe_points.h>
+
+#include <cmath>
+#include <sstream>
 
 namespace anvil
 {
@@ -37,6 +44,15 @@ namespace anvil
             {
               scene.fail("Output/Probes", "item '" + item + "': '" + coords[d] + "' is not a number");
             }
+        for (unsigned int d = 0; d < dim; ++d)
+          if (!std::isfinite(p.point[d]))
+            scene.fail("Output/Probes", "item '" + item + "': '" + coords[d] +
+                                          "' is not a finite number");
+        for (const auto &other : probes)
+          if (other.name == p.name)
+            scene.fail("Output/Probes", "names the probe '" + p.name +
+                                          "' twice: expected distinct names (they name the "
+                                          "columns of probes.csv)");
         probes.push_back(p);
       }
     return probes;
@@ -60,6 +76,34 @@ namespace anvil
       probes = parse_probe_points<dim>(prm.get({"Output"}, "Probes"), scene);
     }
     bool applies(const SceneContents<dim> &) const override { return !probes.empty(); }
+
+    // A probe outside every body would report zeros for the whole run.
+    void check(const SimulationState<dim> &s) override
+    {
+      const MappingQ1<dim> mapping;
+      for (const auto &p : probes)
+        {
+          unsigned int found = 0;
+          try
+            {
+              const auto c =
+                GridTools::find_active_cell_around_point(mapping, s.triangulation, p.point);
+              found = c.first.state() == IteratorState::valid && !c.first->is_artificial();
+            }
+          catch (...)
+            {
+              // not in this process's part of the mesh
+            }
+          if (Utilities::MPI::sum(found, s.communicator) == 0)
+            {
+              std::ostringstream at;
+              at << p.point;
+              s.scene.fail("Output/Probes", "puts the probe '" + p.name + "' at (" + at.str() +
+                                              "), outside the mesh: expected a point of a body "
+                                              "(reference configuration, mm)");
+            }
+        }
+    }
 
     void start(const SimulationState<dim> &s, const bool append) override
     {

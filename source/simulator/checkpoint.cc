@@ -6,6 +6,7 @@
 #include <anvil/simulator/simulator.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -23,6 +24,29 @@ namespace anvil
     // A new entry is a new key: restarts read by name, never by position.
     constexpr int checkpoint_format = 2;
     const char   *checkpoint_magic  = "anvil-checkpoint";
+
+    // Size and FNV-1a hash of a file: a checkpoint's mesh files damaged or cut
+    // short after it was written are refused at parse (p4est aborts on them).
+    std::string fingerprint(const std::string &filename)
+    {
+      std::ifstream      in(filename, std::ios::binary);
+      std::uint64_t      hash = 1469598103934665603ull, size = 0;
+      char               buffer[1 << 16];
+      while (in.read(buffer, sizeof buffer) || in.gcount() > 0)
+        {
+          for (std::streamsize i = 0; i < in.gcount(); ++i)
+            hash = (hash ^ static_cast<unsigned char>(buffer[i])) * 1099511628211ull;
+          size += in.gcount();
+        }
+      std::ostringstream s;
+      s << size << ' ' << std::hex << hash;
+      return s.str();
+    }
+
+    // Counts the restart adds to: whole numbers that fit their counters.
+    const char *const counters[] = {"steps", "cut_backs", "newton_iterations", "linear_iterations",
+                                    "heat_internal_steps", "heat_nonlinear_iterations",
+                                    "staggered_iterations"};
 
     std::string joined(const std::vector<std::string> &names)
     {
@@ -118,9 +142,23 @@ namespace anvil
     try
       {
         for (const auto &[key, value] : state.entries)
-          if (key != "scene" && key != "coupling" && key != "bodies" && key != "contact_pairs" &&
-              key.rfind("output.", 0) != 0)
+          if (key.rfind("file.", 0) == 0)
+            {
+              if (fingerprint(restart_directory + "/" + key.substr(5)) != value)
+                throw InputError("its file '" + key.substr(5) + "' is not the one written with "
+                                 "it (size and checksum differ: damaged or incomplete)");
+            }
+          else if (key != "scene" && key != "coupling" && key != "bodies" &&
+                   key != "contact_pairs" && key.rfind("output.", 0) != 0)
             StateFile::to_number(key, value);
+        for (const char *key : counters)
+          {
+            const double n = state.number(key);
+            if (!(n >= 0 && n <= 4294967295. && n == std::floor(n)))
+              throw InputError("the checkpoint entry '" + std::string(key) + "' = '" +
+                               state.text(key).substr(0, 40) +
+                               "' is not a count (a whole number below 2^32; damaged?)");
+          }
         std::istringstream contact(state.contact);
         std::size_t        n = 0, tokens = 0;
         contact >> n;
@@ -213,6 +251,11 @@ namespace anvil
       }
     for (const auto &[key, value] : output_state)
       entry("output." + key, value);
+    // The mesh files saved beside this file (complete: save() is collective).
+    const auto directory = std::filesystem::path(filename).parent_path();
+    for (const auto &f : std::filesystem::directory_iterator(directory))
+      if (f.path().filename().string().rfind("mesh", 0) == 0)
+        entry("file." + f.path().filename().string(), fingerprint(f.path().string()));
     if (!physics.contact_problem().empty())
       out << "contact\n" << contact_state;
     out.flush();

@@ -6,7 +6,9 @@
 #include <anvil/simulator/simulator.h>
 #include <anvil/material/point_driver.h>
 
+#include <chrono>
 #include <iostream>
+#include <thread>
 
 namespace anvil
 {
@@ -63,6 +65,8 @@ namespace anvil
     std::string run_scene(Scene &scene, const bool check_only)
     {
       Simulator<dim> simulator(scene, MPI_COMM_WORLD);
+      if (check_only)
+        simulator.check();
       if (check_only || simulator.run())
         return "";
       return simulator.failure();
@@ -160,10 +164,61 @@ namespace anvil
     }
   } // namespace
 
+  namespace
+  {
+    // One line, and not a megabyte of it: a hostile scene can put 100 000
+    // characters into the value or name an error message quotes.
+    std::string one_clear_line(const std::string &text)
+    {
+      std::string line;
+      for (const char c : text)
+        line += (c == '\n' || c == '\r') ? ' ' : c;
+      if (line.size() <= 1200)
+        return line;
+      return line.substr(0, 800) + " [... " + std::to_string(line.size() - 1100) +
+             " characters left out ...] " + line.substr(line.size() - 300);
+    }
+
+    // An error seen by some processes only (a formula that is not finite at a
+    // point of one process, a file one process cannot write) must end all of
+    // them: the others may wait in a collective call forever. The processes
+    // that stop meet in a barrier of their own; if all arrive, the first one
+    // prints and all return; if some do not within a few seconds, this one
+    // prints its message and MPI_Abort ends the job with the same status.
+    int end_with(const std::string &prefix, const std::string &message, const int status,
+                 MPI_Comm errors)
+    {
+      const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+      if (Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+        {
+          MPI_Request request;
+          MPI_Ibarrier(errors, &request);
+          int          all_here = 0;
+          const double start    = MPI_Wtime();
+          while (!all_here && MPI_Wtime() - start < 10)
+            {
+              MPI_Test(&request, &all_here, MPI_STATUS_IGNORE);
+              if (!all_here)
+                std::this_thread::sleep_for(std::chrono::milliseconds(2));
+            }
+          if (!all_here)
+            {
+              std::cerr << prefix << one_clear_line(message) << std::endl;
+              MPI_Abort(MPI_COMM_WORLD, status);
+            }
+        }
+      if (root)
+        std::cerr << prefix << one_clear_line(message) << std::endl;
+      return status;
+    }
+  } // namespace
+
   int run_anvil(int argc, char **argv)
   {
     Utilities::MPI::MPI_InitFinalize mpi(argc, argv, thread_limit(argc, argv));
     const bool root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    MPI_Comm   errors; // only for end_with(): no other message may match its barrier
+    MPI_Comm_dup(MPI_COMM_WORLD, &errors);
 
     std::string                                        filename;
     std::vector<std::pair<std::string, std::string>> overrides;
@@ -260,20 +315,19 @@ namespace anvil
       }
     catch (const InputError &e)
       {
-        if (root)
-          std::cerr << "anvil: error: " << e.what() << std::endl;
-        return 2;
+        return end_with("anvil: error: ", e.what(), 2, errors);
       }
     catch (const SimulationError &e)
       {
-        if (root)
-          std::cerr << "anvil: simulation stopped: " << e.what() << std::endl;
-        return 3;
+        return end_with("anvil: simulation stopped: ", e.what(), 3, errors);
       }
     catch (const std::exception &e)
       {
-        std::cerr << "anvil: internal error: " << e.what() << std::endl;
-        return 1;
+        return end_with("anvil: internal error: ", e.what(), 1, errors);
+      }
+    catch (...)
+      {
+        return end_with("anvil: internal error: ", "an unknown exception", 1, errors);
       }
     return 0;
   }

@@ -2,6 +2,7 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/utilities.h>
 
+#include <anvil/core/expression.h>
 #include <anvil/core/input_error.h>
 #include <anvil/core/instantiate.h>
 #include <anvil/simulator/simulator.h>
@@ -146,6 +147,12 @@ namespace anvil
                    std::filesystem::path(scene.filename().empty() ? "anvil" : scene.filename())
                      .stem()
                      .string();
+    // A run killed between the two renames of write_checkpoint() has left its
+    // last good checkpoint as <dir>.old: resume from that one.
+    namespace fs = std::filesystem;
+    if (!restart_directory.empty() && !fs::exists(restart_directory + "/state.txt") &&
+        fs::exists(restart_directory + ".old/state.txt"))
+      restart_directory += ".old";
     if (!restart_directory.empty())
       check_checkpoint();
     for (const auto &entry : PostprocessorRegistry<dim>::instance().all())
@@ -224,6 +231,31 @@ namespace anvil
   }
 
   template <int dim>
+  void Simulator<dim>::check()
+  {
+    timer = std::make_unique<TimerOutput>(mpi_communicator, pcout, TimerOutput::never,
+                                          TimerOutput::wall_times);
+    try
+      {
+        setup();
+        check_against_mesh();
+      }
+    catch (...)
+      {
+        timer.reset();
+        throw;
+      }
+    timer.reset();
+  }
+
+  template <int dim>
+  void Simulator<dim>::check_against_mesh()
+  {
+    for (auto &o : outputs)
+      o->check(state(0, 0));
+  }
+
+  template <int dim>
   bool Simulator<dim>::run_steps()
   {
     wall_start         = MPI_Wtime();
@@ -231,6 +263,7 @@ namespace anvil
     timer = std::make_unique<TimerOutput>(mpi_communicator, pcout, TimerOutput::never,
                                           TimerOutput::wall_times);
     setup();
+    check_against_mesh();
     physics.setup(triangulation, *timer, quiet);
     scheme->initialize(physics);
     double t  = 0;
@@ -263,11 +296,14 @@ namespace anvil
         for (auto &o : outputs)
           o->initial(state(0, 0));
       }
+    throw_recorded_input_error(mpi_communicator);
     const double eps = 1e-12 * time.end_time;
     while (t < time.end_time - eps)
       {
         const double step = std::min(dt, time.end_time - t);
         auto         r    = scheme->advance(t, t + step);
+        // A formula that gave NaN or inf is the scene's error: no cut-back.
+        throw_recorded_input_error(mpi_communicator);
         r.time_step       = step;
         statistics.newton_iterations += r.mechanics_iterations();
         statistics.linear_iterations += r.linear_iterations();
@@ -310,6 +346,7 @@ namespace anvil
                step;
       }
 
+    throw_recorded_input_error(mpi_communicator);
     for (auto &o : outputs)
       o->finish(state(t, statistics.steps, true), false);
     write_summary("completed");

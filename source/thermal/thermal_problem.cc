@@ -50,6 +50,10 @@ namespace anvil
     m.conductivity_slope    = prm.get_double("Conductivity temperature coefficient");
     m.reference_temperature = prm.get_double("Reference temperature");
     prm.leave_subsection();
+    if (!(m.reference_temperature > 0))
+      scene.fail(path + "/Thermal/Reference temperature",
+                 "= " + std::to_string(m.reference_temperature) +
+                   " K: expected an absolute temperature > 0 K");
     if (!(density > 0) || !(heat_capacity > 0))
       scene.fail(path, "has density " + std::to_string(density) + " and heat capacity " +
                          std::to_string(heat_capacity) + ": both must be > 0 for a temperature field");
@@ -181,6 +185,7 @@ namespace anvil
   {
     prm.enter_subsection("Heat");
     initial_temperature = prm.get("Initial temperature");
+    initial_temperature_location = scene.where("Heat/Initial temperature");
     polynomial_degree   = prm.get_integer("Polynomial degree");
     source              = trim(prm.get("Source"));
     prm.enter_subsection("Time integration");
@@ -365,6 +370,15 @@ namespace anvil
 
     initial_function->set_time(start_time);
     VectorTools::interpolate(get_mapping(), dof_handler, *initial_function, solution);
+    // The heat equation (radiation, conductivity slopes, softening) needs
+    // absolute temperatures: T <= 0 K at a node is the scene's error.
+    throw_recorded_input_error(mpi_communicator);
+    const double lowest = Utilities::MPI::min(solution.size() ? solution.min() : 1., mpi_communicator);
+    if (!(lowest > 0))
+      throw InputError(parameters.initial_temperature_location +
+                       ": 'Heat/Initial temperature' = '" + parameters.initial_temperature +
+                       "' gives " + Utilities::to_string(lowest) +
+                       " K at a node: expected an absolute temperature > 0 K everywhere");
     apply_dirichlet(start_time, solution);
     hanging.distribute(solution);
     old_solution            = solution;

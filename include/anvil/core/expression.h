@@ -1,6 +1,7 @@
 #pragma once
 
 #include <deal.II/base/function_parser.h>
+#include <deal.II/base/mpi.h>
 
 #include <memory>
 #include <string>
@@ -18,6 +19,15 @@ namespace anvil
   std::shared_ptr<dealii::FunctionParser<dim>> parse_expression(const std::string &expression,
                                                                 const Scene       &scene,
                                                                 const std::string &path);
+
+  /**
+   * The expressions made here check every value they give: the first NaN or
+   * infinite one is recorded (from any thread) with the entry, the formula and
+   * where and when it was evaluated. throw_recorded_input_error() (collective
+   * over @p comm) turns it into an InputError on every process.
+   */
+  void record_input_error(const std::string &message);
+  void throw_recorded_input_error(MPI_Comm comm);
 
   /// The same with other variables (e.g. "t" for dim = 1, not time dependent);
   /// @p what (optional) says what the expression is for in the message.

@@ -5,6 +5,8 @@
 #include <deal.II/base/types.h>
 #include <deal.II/distributed/tria.h>
 
+#include <istream>
+
 #include <map>
 #include <memory>
 #include <string>
@@ -81,6 +83,10 @@ namespace anvil
     void create_ring(dealii::Triangulation<dim> &tria) const;
     void create_bar(dealii::Triangulation<dim> &tria) const;
     void create_gmsh(dealii::Triangulation<dim> &tria) const;
+    // mesh_check.cc: refuse with one line what the run could not use.
+    void check_msh22(std::istream &in) const;
+    void check_size(unsigned int n_coarse_cells) const;
+    void check_cells(const dealii::parallel::distributed::Triangulation<dim> &tria) const;
 
     std::string        type;
     std::vector<Block> blocks;
@@ -93,6 +99,7 @@ namespace anvil
     unsigned int global_refinements = 0;
     double       random_distortion  = 0;
     std::vector<std::shared_ptr<dealii::FunctionParser<dim>>> transformation;
+    std::map<std::string, std::string> locations; // entry -> where the scene sets it
 
     // Filled by parse_parameters (generators) or by create (gmsh reads the file
     // once at parse to learn the names, so they are known before any work).

@@ -89,6 +89,9 @@ namespace anvil
     /// Whether it writes anything for this scene.
     virtual bool applies(const SceneContents<dim> & /*contents*/) const { return true; }
 
+    /// The mesh is built (by a run, and by --check): refuse, collectively and
+    /// with one line (InputError via state.scene.fail), what does not fit it.
+    virtual void check(const SimulationState<dim> & /*state*/) {}
     virtual void start(const SimulationState<dim> & /*state*/, bool /*append*/) {}
     virtual void initial(const SimulationState<dim> &state) { accepted(state, nullptr); }
     virtual void attempt(const SimulationState<dim> & /*state*/, const StepReport<dim> & /*r*/) {}

@@ -43,6 +43,9 @@ namespace anvil
     /// writing the last converged state, a checkpoint and summary.json;
     /// failure() says why.
     bool run();
+    /// --check: build the mesh the run would use and check the scene against
+    /// it (mesh file, size, cells, probes), then stop; throws InputError.
+    void check();
     const std::string &failure() const { return failure_reason; }
 
     /// The output directory of this run.
@@ -64,6 +67,8 @@ namespace anvil
     /// Refuses (InputError) an output directory that cannot be created or written.
     void check_output_directory() const;
     void setup();
+    /// After setup: every output checks the scene against the mesh.
+    void check_against_mesh();
     /// The state outputs read, at time @p t after @p step accepted steps.
     SimulationState<dim> state(double t, unsigned int step, bool last = false) const;
     void print_start() const;

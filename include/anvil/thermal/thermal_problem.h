@@ -120,6 +120,7 @@ namespace anvil
     struct Parameters
     {
       std::string  initial_temperature = "293";
+      std::string  initial_temperature_location; // where the scene sets it, for errors
       std::string  source              = ""; // mW/mm³, expression; empty: none
       unsigned int polynomial_degree   = 1;
       bool         axisymmetric        = false; // set by the caller (Mechanics/Two-dimensional model)

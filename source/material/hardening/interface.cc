@@ -73,6 +73,7 @@ namespace anvil
     law->softened_parameters = Utilities::split_string_list(prm.get("Softened parameters"));
     law->thermal             = create_thermal_softening(prm, scene, p);
     law->parse_parameters(prm, scene, p);
+    law->location = scene.where(p + "/Model") + ": '" + p + "'";
     prm.leave_subsection();
     return law;
   }

@@ -27,6 +27,9 @@ namespace anvil
     prm.enter_subsection("Thermal softening");
     auto law   = ThermalSofteningRegistry::instance().create(prm.get("Model"));
     law->T_ref = prm.get_double("Reference temperature");
+    if (!(law->T_ref > 0))
+      scene.fail(path + "/Thermal softening/Reference temperature",
+                 "= " + std::to_string(law->T_ref) + " K: expected an absolute temperature > 0 K");
     law->parse_parameters(prm, scene, path + "/Thermal softening");
     prm.leave_subsection();
     return law;

@@ -68,6 +68,9 @@ namespace anvil
     virtual bool is_nondecreasing(double T) const = 0;
 
     double initial_yield_stress(double T) const { return evaluate(0, T).stress; }
+
+    /// "file:line: '<path>/Hardening'": where the scene sets the law, for errors.
+    std::string location;
     const ThermalSoftening &softening() const { return *thermal; }
 
     /// Declares one of the entries several laws share ("Initial yield stress",
