@@ -323,6 +323,21 @@ namespace anvil
       }
     catch (const std::exception &e)
       {
+        // A value its pattern accepts but strtod cannot hold (a subnormal such
+        // as 1e-308 sets ERANGE): deal.II's get_double() refuses it late. It is
+        // the scene's error, not ours.
+        const std::string what = e.what();
+        const std::string tag  = "Can't convert the parameter value <";
+        const auto        at   = what.find(tag);
+        const auto        mid  = at == std::string::npos ? at : what.find("> for entry <", at);
+        const auto        end  = mid == std::string::npos ? mid : what.find('>', mid + 13);
+        if (end != std::string::npos)
+          return end_with("anvil: error: ",
+                          filename + ": " + what.substr(mid + 13, end - mid - 13) + " = " +
+                            what.substr(at + tag.size(), mid - at - tag.size()) +
+                            ": not representable as a double (too small or too large); expected "
+                            "a normal floating-point number",
+                          2, errors);
         return end_with("anvil: internal error: ", e.what(), 1, errors);
       }
     catch (...)
