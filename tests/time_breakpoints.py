@@ -3,9 +3,8 @@ breakpoint and restarts after it from 'Step after breakpoint'; no step
 crosses one. Checked on the cantilever (prm/cantilever.prm) with a growing
 step (Growth factor 2 up to 0.4 s), breakpoints at 0.33 and 0.7 s and a
 restart step of 0.01 s: the accepted times hold 0.33 and 0.7 to round-off,
-the step after each is 0.01 s, and without breakpoints a step crosses 0.33
-(so the first check can fail). The answer at the end is the one without
-breakpoints (the cantilever is elastic and rate-independent: 1e-9). Bad
+the step after each is 0.01 s and the next one 0.02 s (growth resumes), and
+without breakpoints a step crosses 0.33 (so the first check can fail). Bad
 input: breakpoints not increasing give one line naming the entry, exit 2."""
 import os
 import subprocess
@@ -32,9 +31,10 @@ ref, r, _ = run("prm/cantilever.prm", COMMON, name="time_breakpoints_none")
 t_ref = read_csv(os.path.join(ref, "probes.csv"))["time"]
 check(any(a < 0.33 - 1e-12 and c > 0.33 + 1e-12 for a, c in zip(t_ref, t_ref[1:])),
       "without breakpoints a step crosses 0.33 s (%d steps, %d with them)" % (r["steps"], s["steps"]))
-for q in ("tip_ux", "tip_uy"):
-    close(s["quantities_of_interest"][q], r["quantities_of_interest"][q], 1e-9,
-          "%s at the end (mm) with and without breakpoints" % q)
+# After the restart step the step grows again by Growth factor (the scene's
+# steps are easy: elastic, 1-3 Newton iterations).
+i = [k for k, t in enumerate(times) if abs(t - 0.33) <= 1e-12][0]
+close(steps[i + 1], 2 * steps[i], 1e-12, "the second step after 0.33 s (s), Growth factor 2")
 
 p = subprocess.run([ANVIL, os.path.join(SOURCE_DIR, "prm", "cantilever.prm"), "--set",
                     "Time/Breakpoints=0.5, 0.2", "--check"], capture_output=True, text=True)
