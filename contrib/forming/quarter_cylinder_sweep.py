@@ -12,8 +12,9 @@ once, default 2: the machine has two cores) and writes to --out:
   table.md       per temperature: steps, Newton iterations, wall time, the
                  rotation of the free end at the end of the hold and at the
                  end, springback (their difference) against the closed form
-                 of elastic-perfectly plastic pure bending unloading
-                 (doc/quarter_cylinder_forming.md), the final mean radius of
+                 of elastic-perfectly plastic pure bending unloading of the
+                 fully wrapped sheet with the relaxed stress (doc/
+                 quarter_cylinder_forming.md), the final mean radius of
                  curvature L / theta_end against the die's, and the largest
                  residual J2 (von Mises) stress;
   shapes.png     the four final configurations in one figure (seed Fig. 4);
@@ -39,6 +40,8 @@ L, R, t_sheet, nu = 25 * math.pi ** 2, 50 * math.pi, 1.0, 0.33
 E0 = 70000.0
 g_table = {293: 1, 493: 0.89, 693: 0.77, 793: 0.71, 993: 0.58}     # as in the scene
 s0_table = {293: 145, 493: 90, 693: 15, 793: 5, 993: 1}
+eta_table = {293: 10, 493: 60, 693: 300, 793: 300, 993: 30}
+m_table = {293: 20, 493: 6.7, 693: 3.3, 793: 2, 993: 2}
 
 
 def interp(table, T):
@@ -49,11 +52,19 @@ def interp(table, T):
             return table[a] + (table[b] - table[a]) * (T - a) / (b - a)
 
 
+def overstress_after_hold(T, hold=2700.0):
+    """Perzyna overstress left after the hold (seed eq. 14 with n = 1, eq. 18):
+    ds/dt = -E (s/eta)^m leaves at most ((m - 1) E t / eta^m)^(-1/(m - 1))."""
+    E, eta, m = E0 * interp(g_table, T), interp(eta_table, T), interp(m_table, T)
+    return ((m - 1) * E * hold / eta ** m) ** (-1 / (m - 1))
+
+
 def closed_form_springback(T):
     """Springback angle (deg) of elastic-perfectly plastic pure bending to the
-    die's mid-surface curvature, unloaded elastically to M = 0 (doc)."""
+    die's mid-surface curvature, unloaded elastically to M = 0 (doc), with the
+    relaxed stress sigma_0(T) + the overstress left after the hold."""
     Ep = E0 * interp(g_table, T) / (1 - nu ** 2)
-    sp = 2 / math.sqrt(3) * interp(s0_table, T)
+    sp = 2 / math.sqrt(3) * (interp(s0_table, T) + overstress_after_hold(T))
     kappa, kappa_e = 1 / (R + t_sheet / 2), 2 * sp / (Ep * t_sheet)
     dkappa = kappa_e * (1.5 - 0.5 * (kappa_e / kappa) ** 2) if kappa > kappa_e else kappa
     return math.degrees(dkappa * L)
