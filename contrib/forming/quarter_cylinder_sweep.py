@@ -165,7 +165,7 @@ def table(results, unload_hot):
                         r["springback"], r["closed_form"], r["ratio"], r["radius"], r["j2_max"],
                         r["j2_max_free"]))
     lines.append("")
-    lines.append("J2: cell averages (2 cells through the thickness). Die radius %.1f mm "
+    lines.append("J2: cell averages (the shipped mesh has 2 cells through the thickness). Die radius %.1f mm "
                  "(mid-surface %.1f mm). Unloading %s." %
                  (R, R + t_sheet / 2, "at the forming temperature (--unload-hot)" if unload_hot
                   else "while cooling to 293 K (as the scene)"))
