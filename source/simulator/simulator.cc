@@ -8,6 +8,7 @@
 #include <anvil/simulator/simulator.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -16,6 +17,24 @@
 namespace anvil
 {
   using namespace dealii;
+
+  namespace
+  {
+    // ANVIL_RANK_FAULT=R:N (tests only): process R alone fails after step N,
+    // while the others go on into the next step's collective calls and wait
+    // there: the case run.cc's end_with() must end by MPI_Abort.
+    void injected_fault(const unsigned int step)
+    {
+      const char *fault = std::getenv("ANVIL_RANK_FAULT");
+      if (!fault)
+        return;
+      const std::string f(fault), rank = f.substr(0, f.find(':'));
+      if (rank == std::to_string(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD)) &&
+          f.substr(f.find(':') + 1) == std::to_string(step))
+        throw SimulationError("injected fault on process " + rank + " after step " +
+                              std::to_string(step) + " (ANVIL_RANK_FAULT)");
+    }
+  } // namespace
 
   namespace
   {
@@ -348,6 +367,7 @@ namespace anvil
           }
 
         scheme->commit(t, t + step);
+        injected_fault(statistics.steps + 1);
         last_accepted_step = step;
         t                  = t + step;
         current_time       = t;
