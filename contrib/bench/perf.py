@@ -26,6 +26,7 @@ import time
 
 build, out = sys.argv[1], sys.argv[2]
 small = "--small" in sys.argv[3:]
+os.makedirs(out, exist_ok=True)
 root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 anvil = os.path.join(build, "anvil")
 env = dict(os.environ, DEAL_II_NUM_THREADS="1")
@@ -130,8 +131,9 @@ if s is not None:
     h = s.get("heat", {})
     rows = bare_rows(os.path.join(out, "perf_heat_plate", "thermal.csv"))
     col = lambda k: sum(float(r[k]) for r in rows if k in r)
-    print("heat plate (contrib/bench/heat_plate.prm%s), %d temperature unknowns: %.2f s solver, %.2f s process; "
-          "(%.2f s CPU); %d steps, ARKode steps %d, nonlinear iterations %d, linear setups %d, linear solves %d; "
+    print("heat plate (contrib/bench/heat_plate.prm%s), %d temperature unknowns: %.2f s solver, %.2f s process "
+          "(%.2f s CPU); %d steps, ARKode steps %d, nonlinear iterations %d, linear setups %d, linear solves %d "
+          "(%d Krylov and mass CG iterations); "
           "Heat: residual %d calls %.2f s, tangent %d calls %.2f s, Newton matrix %d calls %.2f s; "
           "T_mean %.6f K, T_p1 %.6f K" % (
               ", to 5 s" if small else "", s.get("temperature_dofs", 0), s["wall_time"], process[0], process[1], s["steps"],
