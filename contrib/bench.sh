@@ -4,10 +4,15 @@
 # assembly's speed-up on 2 threads.
 #   contrib/bench.sh            # 2D 512x512 (0.5 M DoFs) and 3D 69^3 (1 M DoFs), one process
 #   contrib/bench.sh --small    # quick sizes
+#   contrib/bench.sh --perf [--small]   # issue 15's figures only (contrib/bench/perf.py)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 out="${ANVIL_BENCH_DIR:-$ANVIL_BUILD/bench}"
 mkdir -p "$out"
+if [ "${1:-}" = "--perf" ]; then
+  python3 "$ANVIL_ROOT/contrib/bench/perf.py" "$ANVIL_BUILD" "$out" "${2:-}"
+  exit 0
+fi
 n2=512; n3=69; n3p=40
 if [ "${1:-}" = "--small" ]; then n2=128; n3=20; n3p=16; fi
 export DEAL_II_NUM_THREADS=1
@@ -251,3 +256,8 @@ python3 "$ANVIL_ROOT/contrib/bench/compare_walltimes.py" "$ANVIL_BUILD"
 start=$(date +%s.%N)
 (cd "$ANVIL_BUILD" && ctest -L regression -j2 > "$out/regression.log" 2>&1) || echo "regression layer: FAILED (see $out/regression.log)"
 echo "regression layer: $(grep -c 'Passed' "$out/regression.log") cases, $(python3 -c "import sys; print(round(float(sys.argv[2]) - float(sys.argv[1]), 1))" "$start" "$(date +%s.%N)") s wall on ctest -j2"
+# Issue 15 (performance): solver and process wall time, thermal share, time per
+# Newton iteration against one assembly + one solve, Krylov iterations per
+# solve on the two blocks, the thermal necking bar and the tube (case 3); the
+# linear heat benchmark contrib/bench/heat_plate.prm.
+python3 "$ANVIL_ROOT/contrib/bench/perf.py" "$ANVIL_BUILD" "$out" $([ "${1:-}" = "--small" ] && echo --small)

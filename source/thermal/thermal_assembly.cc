@@ -20,6 +20,7 @@
 #include <anvil/thermal/kernels.h>
 #include <anvil/thermal/thermal_problem.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace anvil
@@ -137,16 +138,20 @@ namespace anvil
   template <int dim>
   void ThermalProblem<dim>::add_prescribed_fluxes(const double t, Vector &rhs)
   {
-    // Prescribed fluxes at t, on their faces only, each face added on its own.
+    // Prescribed fluxes and convection loads h T∞ at t, on their faces only,
+    // each face added on its own. The convection's −h T is in K: the faces
+    // are evaluated at T = 0.
     bool any_flux = false;
     for (const auto &[id, b] : boundary_conditions.boundaries)
-      if (b.flux)
-        {
-          any_flux = true;
-          b.flux->set_time(t);
-        }
+      for (const auto &f : {b.flux, b.h, b.T_convection})
+        if (f)
+          {
+            any_flux = true;
+            f->set_time(t);
+          }
     if (!any_flux)
       return;
+    const Vector zero(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
     const thermal::ScratchData<dim> scratch(get_mapping(), reference_mapping, fe, quadrature,
                                             face_quadrature, update_default, update_default,
                                             update_values | update_JxW_values | update_quadrature_points);
@@ -159,10 +164,10 @@ namespace anvil
         if (cell->face(f)->at_boundary())
           {
             const auto bc = boundary_conditions.boundaries.find(cell->face(f)->boundary_id());
-            if (bc == boundary_conditions.boundaries.end() || !bc->second.flux)
+            if (bc == boundary_conditions.boundaries.end() || !(bc->second.flux || bc->second.h))
               continue;
             c.vector = 0;
-            thermal::boundary_face<dim>(s, cell, f, bc->second, nullptr, axi, false, c);
+            thermal::boundary_face<dim>(s, cell, f, bc->second, &zero, axi, false, c);
             c.face_vectors[c.n_faces++] = c.vector;
           }
       if (c.n_faces > 0)
@@ -179,18 +184,28 @@ namespace anvil
   template <int dim>
   bool ThermalProblem<dim>::linear_residual(const double t, const Vector &y, Vector &rhs)
   {
-    // f = −K y + F: K (the tangent, assembled once per configuration) and the
-    // step's sources F fixed while the geometry is frozen; only the
-    // prescribed fluxes are evaluated at t. Needs: k independent of T, no
-    // radiation, no convection (h may depend on t), no Temperature boundary
-    // (its ġ terms), no expression source (may depend on t, x).
-    if (!(linear && !has_dirichlet && !has_convection && !source_function))
+    // f = −K y + F(t): K (the tangent, assembled once per configuration) and
+    // the step's sources fixed while the geometry is frozen; only the
+    // prescribed fluxes and the convection loads h T∞(t) are evaluated at t
+    // (faces only). Temperature boundaries add the columns the constrained K
+    // and M drop, −K_fD y_D − M_fD ġ_D, and their rows Ṫ_D = ġ_D: the same
+    // sums as the cell loop of assemble(), in another order. Needs: k
+    // independent of T, no radiation, h independent of t (K would change),
+    // no expression source (may depend on t, x), no hanging nodes beside
+    // Temperature boundaries (a hanging dof's Dirichlet master is a column
+    // the couplings below do not see).
+    if (!(linear && !convection_varies && !source_function && !(has_dirichlet && has_hanging)))
       return false;
     TimerOutput::Scope scope(timer, "Heat: residual (linear)");
     if (!tangent_current)
       {
         assemble(t, y, nullptr, &tangent_matrix);
         tangent_current = true;
+      }
+    if (has_dirichlet && !couplings_current)
+      {
+        assemble_dirichlet_couplings();
+        couplings_current = true;
       }
     if (!sources_current)
       {
@@ -201,6 +216,8 @@ namespace anvil
       Vector owned(y);
       hanging.distribute(owned);
       tangent_matrix.vmult(rhs, owned);
+      if (has_dirichlet)
+        dirichlet_stiffness.vmult_add(rhs, owned);
     }
     rhs *= -1.;
     rhs += step_sources;
@@ -210,7 +227,116 @@ namespace anvil
         rhs.compress(VectorOperation::add);
       }
     add_prescribed_fluxes(t, rhs);
+    if (has_dirichlet)
+      {
+        std::map<types::global_dof_index, double> g_dot;
+        if (dirichlet_varies)
+          g_dot = dirichlet_rates(t);
+        if (!g_dot.empty() && !parameters.lumped_mass)
+          {
+            Vector rates(locally_owned_dofs, mpi_communicator), lift(locally_owned_dofs, mpi_communicator);
+            for (const auto i : dirichlet_dofs)
+              {
+                const auto it = g_dot.find(i);
+                rates(i)      = it == g_dot.end() ? 0. : it->second;
+              }
+            rates.compress(VectorOperation::insert);
+            dirichlet_mass.vmult(lift, rates);
+            rhs -= lift;
+          }
+        for (const auto i : dirichlet_dofs)
+          {
+            const auto it = g_dot.find(i);
+            rhs(i)        = it == g_dot.end() ? 0. : mass_diagonal(i) * it->second;
+          }
+        rhs.compress(VectorOperation::insert);
+      }
     return true;
+  }
+
+  template <int dim>
+  void ThermalProblem<dim>::assemble_dirichlet_couplings()
+  {
+    // K_fD on the current configuration (conduction and convection faces)
+    // and M_fD on the reference one (ρ dv = ρ₀ dV): of each cell's matrix
+    // only the columns of Dirichlet dofs and the rows of the others, rows
+    // condensed through the hanging nodes as constraints.distribute does.
+    TimerOutput::Scope scope(timer, "Heat: Dirichlet couplings");
+    for (auto *m : {&dirichlet_stiffness, &dirichlet_mass})
+      {
+        m->reinit(tangent_matrix); // its layout: the pattern keeps constrained entries
+        *m = 0;
+      }
+    auto dirichlet = [&](const types::global_dof_index i) {
+      return locally_relevant_dofs.is_element(i) && is_dirichlet[locally_relevant_dofs.index_within_set(i)];
+    };
+    auto keep_couplings = [&](thermal::CopyData &c) {
+      bool any = false;
+      for (unsigned int i = 0; i < c.dofs.size(); ++i)
+        for (unsigned int j = 0; j < c.dofs.size(); ++j)
+          if (dirichlet(c.dofs[i]) || !dirichlet(c.dofs[j]))
+            c.matrix(i, j) = 0;
+          else
+            any = any || c.matrix(i, j) != 0;
+      return any;
+    };
+    const bool axi = parameters.axisymmetric;
+    {
+      const thermal::ScratchData<dim> scratch(
+        get_mapping(), reference_mapping, fe, quadrature, face_quadrature,
+        update_values | update_gradients | update_JxW_values | update_quadrature_points, update_default,
+        update_values | update_JxW_values | update_quadrature_points);
+      auto worker = [&](const CellIterator &cell, thermal::ScratchData<dim> &s, thermal::CopyData &c) {
+        c.n_faces = 0;
+        cell->get_dof_indices(c.dofs);
+        if (std::none_of(c.dofs.begin(), c.dofs.end(), dirichlet))
+          return;
+        s.fe_values.reinit(cell);
+        s.fe_values.get_function_values(temperature_ghosted, s.T);
+        s.fe_values.get_function_gradients(temperature_ghosted, s.grad_T);
+        thermal::fill_weights<dim>(s.fe_values, axi, s.weight);
+        c.matrix = 0;
+        c.vector = 0;
+        thermal::Conduction::cell_tangent(s, materials.at(cell->material_id()), c);
+        for (const unsigned int f : cell->face_indices())
+          if (cell->face(f)->at_boundary())
+            {
+              const auto bc = boundary_conditions.boundaries.find(cell->face(f)->boundary_id());
+              if (bc != boundary_conditions.boundaries.end() && !bc->second.temperature)
+                thermal::boundary_face<dim>(s, cell, f, bc->second, &temperature_ghosted, axi, true, c);
+            }
+        c.n_faces = keep_couplings(c); // here: whether the cell adds anything
+      };
+      auto copier = [&](const thermal::CopyData &c) {
+        if (c.n_faces)
+          hanging.distribute_local_to_global(c.matrix, c.dofs, dirichlet_stiffness);
+      };
+      for_owned_cells(dof_handler, worker, copier, scratch);
+    }
+    {
+      const thermal::ScratchData<dim> scratch(reference_mapping, reference_mapping, fe, quadrature,
+                                              face_quadrature,
+                                              update_values | update_JxW_values | update_quadrature_points,
+                                              update_default, update_default);
+      auto worker = [&](const CellIterator &cell, thermal::ScratchData<dim> &s, thermal::CopyData &c) {
+        c.n_faces = 0;
+        cell->get_dof_indices(c.dofs);
+        if (std::none_of(c.dofs.begin(), c.dofs.end(), dirichlet))
+          return;
+        s.fe_values.reinit(cell);
+        thermal::fill_weights<dim>(s.fe_values, axi, s.weight);
+        const auto &m = materials.at(cell->material_id());
+        thermal::HeatCapacity::cell_matrix(s, m.density * m.heat_capacity, c);
+        c.n_faces = keep_couplings(c);
+      };
+      auto copier = [&](const thermal::CopyData &c) {
+        if (c.n_faces)
+          hanging.distribute_local_to_global(c.matrix, c.dofs, dirichlet_mass);
+      };
+      for_owned_cells(dof_handler, worker, copier, scratch);
+    }
+    dirichlet_stiffness.compress(VectorOperation::add);
+    dirichlet_mass.compress(VectorOperation::add);
   }
 
   template <int dim>

@@ -7,11 +7,27 @@
 #include <anvil/geometry/geometry.h>
 #include <anvil/thermal/thermal_problem.h>
 
+#include <cctype>
 #include <cmath>
 
 namespace anvil
 {
   using namespace dealii;
+
+  namespace
+  {
+    /// Whether a formula names the time t (a token "t", not a letter of a
+    /// longer name such as sqrt or tanh): without it, it is constant in time.
+    bool names_time(const std::string &formula)
+    {
+      auto part_of_name = [](const char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+      for (std::size_t i = formula.find('t'); i != std::string::npos; i = formula.find('t', i + 1))
+        if ((i == 0 || !part_of_name(formula[i - 1])) &&
+            (i + 1 == formula.size() || !part_of_name(formula[i + 1])))
+          return true;
+      return false;
+    }
+  } // namespace
 
   // ---------------------------------------------------------------- material
 
@@ -110,8 +126,13 @@ namespace anvil
             if (slot)
               scene.fail(path, "names the boundary '" + name + "' twice");
             slot = parse(values[0]);
+            if (kind == "Temperature")
+              b.temperature_varies = names_time(values[0]);
             if (kind == "Convection")
-              b.T_convection = parse(values[1]);
+              {
+                b.T_convection = parse(values[1]);
+                b.h_varies     = names_time(values[0]);
+              }
             if (kind == "Radiation")
               b.T_radiation = parse(values[1]);
             if (b.temperature && (b.flux || b.h || b.emissivity))

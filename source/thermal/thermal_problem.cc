@@ -41,8 +41,8 @@ namespace anvil
     int setup_jacobian(const double t, const Vector &y) override
     {
       // Linear problems on a frozen geometry: the Jacobian −K is assembled
-      // once per configuration (unless a convection coefficient may vary in time).
-      if (p.linear && p.tangent_current && !p.has_convection)
+      // once per configuration (unless a convection coefficient h(t) varies).
+      if (p.linear && p.tangent_current && !p.convection_varies)
         return 0;
       p.assemble(t, y, nullptr, &p.tangent_matrix);
       p.tangent_current = true;
@@ -110,8 +110,10 @@ namespace anvil
       linear = linear && m.conductivity_slope == 0;
     for (const auto &[id, b] : boundary_conditions.boundaries)
       {
-        linear         = linear && !b.emissivity;
-        has_convection = has_convection || b.h;
+        linear            = linear && !b.emissivity;
+        has_convection    = has_convection || b.h;
+        convection_varies = convection_varies || (b.h && b.h_varies);
+        dirichlet_varies  = dirichlet_varies || (b.temperature && b.temperature_varies);
       }
   }
 
@@ -159,6 +161,7 @@ namespace anvil
         }
     constraints.close();
     has_dirichlet = Utilities::MPI::max(dirichlet_dofs.size(), mpi_communicator) > 0;
+    has_hanging   = Utilities::MPI::max(hanging.n_constraints(), mpi_communicator) > 0;
 
     DynamicSparsityPattern dsp(locally_relevant_dofs);
     DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, true);
@@ -175,6 +178,7 @@ namespace anvil
                   dof_handler.n_dofs() <= parameters.direct_solver_limit);
     operators_current = false;
     tangent_current   = false;
+    couplings_current = false;
 
     initial_function->set_time(start_time);
     VectorTools::interpolate(get_mapping(), dof_handler, *initial_function, solution);
@@ -208,6 +212,7 @@ namespace anvil
       mechanics_dofs.get_fe().degree, mechanics_dofs, configuration);
     operators_current = false;
     tangent_current   = false;
+    couplings_current = false;
   }
 
   template <int dim>
@@ -340,6 +345,7 @@ namespace anvil
     temperature_ghosted     = old_solution;
     operators_current       = false;
     tangent_current         = false;
+    couplings_current       = false;
   }
 
   template <int dim>

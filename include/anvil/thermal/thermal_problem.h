@@ -81,6 +81,10 @@ namespace anvil
       std::string                                  name;
       std::shared_ptr<dealii::FunctionParser<dim>> temperature, flux, h, T_convection,
         emissivity, T_radiation;
+      /// Whether the Temperature or the convection coefficient h may change in
+      /// time (its formula names t; true unless parse_parameters knows better).
+      /// Constant ones let a linear problem keep K and skip ġ (linear_residual).
+      bool temperature_varies = true, h_varies = true;
     };
 
     /// Declares `subsection Boundary conditions` inside the current subsection (Heat).
@@ -318,8 +322,11 @@ namespace anvil
     void   assemble(double t, const Vector &y, Vector *rhs, dealii::TrilinosWrappers::SparseMatrix *tangent);
     /// F = ∫ s φ dv of the mechanics' sources into step_sources (fast linear path).
     void   assemble_step_sources();
-    /// rhs += the prescribed fluxes at t (fast linear path).
+    /// rhs += the prescribed fluxes and the convection loads h T∞ at t (fast linear path).
     void   add_prescribed_fluxes(double t, Vector &rhs);
+    /// K_fD and M_fD (free rows, Dirichlet columns) into dirichlet_stiffness
+    /// and dirichlet_mass (fast linear path with Temperature boundaries).
+    void   assemble_dirichlet_couplings();
     /// ġ at the Dirichlet dofs at t where it is not zero (central difference).
     std::map<dealii::types::global_dof_index, double> dirichlet_rates(double t) const;
     /// Dirichlet values g(t) at the constrained dofs (locally relevant).
@@ -367,13 +374,18 @@ namespace anvil
     bool   operators_current = false, use_direct = true, linear = true;
     bool   tangent_current = false, has_convection = false; // tangent assembled for this configuration
     bool   sources_current = false;                         // step_sources assembled for this step
+    bool   couplings_current = false;                       // dirichlet_* for this configuration
+    bool   convection_varies = false, dirichlet_varies = false; // some h(t), some g(t)
+    /// The columns of the Dirichlet dofs that the constrained K and M drop:
+    /// f_free = −K y − K_fD y_D − M_fD ġ_D + F (the slow path's cell integrals).
+    dealii::TrilinosWrappers::SparseMatrix dirichlet_stiffness, dirichlet_mass;
     Vector step_sources;                                    // ∫ s φ dv of the mechanics' sources
     /// The residual of a linear problem from K and the step's sources (false: not applicable).
     bool   linear_residual(double t, const Vector &y, Vector &rhs);
     double current_gamma = -1;
     double step_length = 1; // of the current solve_step (for ġ)
     double last_internal_step = 0;
-    bool   has_dirichlet = false;
+    bool   has_dirichlet = false, has_hanging = false;
     unsigned long linear_iterations = 0, mass_solves = 0;
 
     Vector solution, old_solution;                       // owned
