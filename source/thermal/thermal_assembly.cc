@@ -187,8 +187,9 @@ namespace anvil
     // f = −K y + F(t): K (the tangent, assembled once per configuration) and
     // the step's sources fixed while the geometry is frozen; only the
     // prescribed fluxes and the convection loads h T∞(t) are evaluated at t
-    // (faces only). Temperature boundaries add the columns the constrained K
-    // and M drop, −K_fD y_D − M_fD ġ_D, and their rows Ṫ_D = ġ_D: the same
+    // (faces only). Temperature boundaries add −K_fD y_D (columns the tangent
+    // keeps) and −M_fD ġ_D (columns the constrained M drops), and their rows
+    // Ṫ_D = ġ_D: the same
     // sums as the cell loop of assemble(), in another order. Needs: k
     // independent of T, no radiation, h independent of t (K would change),
     // no expression source (may depend on t, x), no hanging nodes beside
@@ -215,9 +216,8 @@ namespace anvil
     {
       Vector owned(y);
       hanging.distribute(owned);
+      // The tangent keeps the Dirichlet columns: −K y includes −K_fD y_D.
       tangent_matrix.vmult(rhs, owned);
-      if (has_dirichlet)
-        dirichlet_stiffness.vmult_add(rhs, owned);
     }
     rhs *= -1.;
     rhs += step_sources;
@@ -257,16 +257,13 @@ namespace anvil
   template <int dim>
   void ThermalProblem<dim>::assemble_dirichlet_couplings()
   {
-    // K_fD on the current configuration (conduction and convection faces)
-    // and M_fD on the reference one (ρ dv = ρ₀ dV): of each cell's matrix
-    // only the columns of Dirichlet dofs and the rows of the others, rows
-    // condensed through the hanging nodes as constraints.distribute does.
+    // M_fD on the reference configuration (ρ dv = ρ₀ dV): of each cell's
+    // matrix only the columns of Dirichlet dofs and the rows of the others,
+    // rows condensed through the hanging nodes as constraints.distribute does.
+    // (K_fD needs no matrix of its own: the tangent keeps those columns.)
     TimerOutput::Scope scope(timer, "Heat: Dirichlet couplings");
-    for (auto *m : {&dirichlet_stiffness, &dirichlet_mass})
-      {
-        m->reinit(tangent_matrix); // its layout: the pattern keeps constrained entries
-        *m = 0;
-      }
+    dirichlet_mass.reinit(tangent_matrix); // its layout: the pattern keeps constrained entries
+    dirichlet_mass = 0;
     auto dirichlet = [&](const types::global_dof_index i) {
       return locally_relevant_dofs.is_element(i) && is_dirichlet[locally_relevant_dofs.index_within_set(i)];
     };
@@ -281,38 +278,6 @@ namespace anvil
       return any;
     };
     const bool axi = parameters.axisymmetric;
-    {
-      const thermal::ScratchData<dim> scratch(
-        get_mapping(), reference_mapping, fe, quadrature, face_quadrature,
-        update_values | update_gradients | update_JxW_values | update_quadrature_points, update_default,
-        update_values | update_JxW_values | update_quadrature_points);
-      auto worker = [&](const CellIterator &cell, thermal::ScratchData<dim> &s, thermal::CopyData &c) {
-        c.n_faces = 0;
-        cell->get_dof_indices(c.dofs);
-        if (std::none_of(c.dofs.begin(), c.dofs.end(), dirichlet))
-          return;
-        s.fe_values.reinit(cell);
-        s.fe_values.get_function_values(temperature_ghosted, s.T);
-        s.fe_values.get_function_gradients(temperature_ghosted, s.grad_T);
-        thermal::fill_weights<dim>(s.fe_values, axi, s.weight);
-        c.matrix = 0;
-        c.vector = 0;
-        thermal::Conduction::cell_tangent(s, materials.at(cell->material_id()), c);
-        for (const unsigned int f : cell->face_indices())
-          if (cell->face(f)->at_boundary())
-            {
-              const auto bc = boundary_conditions.boundaries.find(cell->face(f)->boundary_id());
-              if (bc != boundary_conditions.boundaries.end() && !bc->second.temperature)
-                thermal::boundary_face<dim>(s, cell, f, bc->second, &temperature_ghosted, axi, true, c);
-            }
-        c.n_faces = keep_couplings(c); // here: whether the cell adds anything
-      };
-      auto copier = [&](const thermal::CopyData &c) {
-        if (c.n_faces)
-          hanging.distribute_local_to_global(c.matrix, c.dofs, dirichlet_stiffness);
-      };
-      for_owned_cells(dof_handler, worker, copier, scratch);
-    }
     {
       const thermal::ScratchData<dim> scratch(reference_mapping, reference_mapping, fe, quadrature,
                                               face_quadrature,
@@ -335,7 +300,6 @@ namespace anvil
       };
       for_owned_cells(dof_handler, worker, copier, scratch);
     }
-    dirichlet_stiffness.compress(VectorOperation::add);
     dirichlet_mass.compress(VectorOperation::add);
   }
 

@@ -324,8 +324,8 @@ namespace anvil
     void   assemble_step_sources();
     /// rhs += the prescribed fluxes and the convection loads h T∞ at t (fast linear path).
     void   add_prescribed_fluxes(double t, Vector &rhs);
-    /// K_fD and M_fD (free rows, Dirichlet columns) into dirichlet_stiffness
-    /// and dirichlet_mass (fast linear path with Temperature boundaries).
+    /// M_fD (free rows, Dirichlet columns) into dirichlet_mass (fast linear
+    /// path with Temperature boundaries; K_fD is in the tangent's columns).
     void   assemble_dirichlet_couplings();
     /// ġ at the Dirichlet dofs at t where it is not zero (central difference).
     std::map<dealii::types::global_dof_index, double> dirichlet_rates(double t) const;
@@ -378,7 +378,7 @@ namespace anvil
     bool   convection_varies = false, dirichlet_varies = false; // some h(t), some g(t)
     /// The columns of the Dirichlet dofs that the constrained K and M drop:
     /// f_free = −K y − K_fD y_D − M_fD ġ_D + F (the slow path's cell integrals).
-    dealii::TrilinosWrappers::SparseMatrix dirichlet_stiffness, dirichlet_mass;
+    dealii::TrilinosWrappers::SparseMatrix dirichlet_mass;
     Vector step_sources;                                    // ∫ s φ dv of the mechanics' sources
     /// The residual of a linear problem from K and the step's sources (false: not applicable).
     bool   linear_residual(double t, const Vector &y, Vector &rhs);
