@@ -17,6 +17,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <tuple>
 
 namespace anvil
 {
@@ -82,10 +83,6 @@ namespace anvil
       direct_limit   = prm.get_integer("Monolithic direct limit");
       check_tangent  = prm.get_bool("Monolithic check tangent");
       prm.leave_subsection();
-      if (!scene.contact_pair_names().empty())
-        scene.fail("Contact/Pairs", "names contact pairs, but Physics/Coupling = monolithic does "
-                                    "not assemble the contact's coupled tangent yet: choose "
-                                    "iterated staggered for contact scenes");
     }
 
     void initialize(CoupledProblem<dim> &p) override
@@ -100,6 +97,7 @@ namespace anvil
   private:
     struct State; // residuals of one evaluation
     void setup_structure();
+    void update_contact_links();
     bool evaluate(double t, const Vector &u, const Vector &T, Vector &b_u, Vector &f);
     bool assemble_jacobian(double t, double dt, const Vector &u, const Vector &T,
                            const Vector &b_u, const Vector &f);
@@ -122,6 +120,13 @@ namespace anvil
     unsigned int              n_colours_u = 0, n_colours_T = 0;
     // Owned rows and the columns of the other field (or the same) they couple to.
     std::map<types::global_dof_index, DofList> u_to_T, T_to_u, T_to_T;
+    // Contact: the mesh's own cells (gathered) and T_to_u of the cells alone,
+    // to which the step's contact links are added; the exchange's T columns.
+    CellDofs                                   all_u, all_T;
+    std::map<types::global_dof_index, DofList> T_to_u_cells, T_to_T_contact;
+    std::size_t                                n_contact_links = 0, K_nonzeros = 0;
+    bool                                       contact_heat    = false;
+    double                                     step_length     = 0;
     TrilinosWrappers::SparseMatrix jacobian, heat_block; // heat_block: K_TT for the AMG
     bool                           pattern_ready = false;
     unsigned int                   last_linear_iterations = 0;
@@ -181,12 +186,59 @@ namespace anvil
           std::sort(columns.begin(), columns.end());
           columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
         }
-    const CellDofs all_u = gather_cells(local_u, comm), all_T = gather_cells(local_T, comm);
+    all_u        = gather_cells(local_u, comm);
+    all_T        = gather_cells(local_T, comm);
+    T_to_u_cells = T_to_u;
+    auto &contact = this->problem->contact_problem();
+    contact_heat  = !contact.empty() && contact.has_heat();
     colour_T = colour_columns(all_T, all_T, n_T, n_T, n_colours_T);
     colour_u = colour_columns(all_u, all_T, n_u, n_T, n_colours_u);
     this->problem->log() << "monolithic: " << n_u + n_T << " unknowns; the cross blocks by "
                          << n_colours_T << " + " << n_colours_u
                          << " coloured finite differences per iteration" << std::endl;
+  }
+
+  /**
+   * Contact couples nodes that share no cell: a slave node's heat exchange
+   * (eq. 30–34) depends on the displacements of the node, of the master face
+   * below it and of its surface neighbours, and writes the temperature rows
+   * of the node and the face. Each slave node–master face pair that may touch
+   * in the step enters the colouring as one more "cell"; recoloured when the
+   * set grows (the contact's own search enlarges it, never shrinks it).
+   */
+  template <int dim>
+  void Monolithic<dim>::update_contact_links()
+  {
+    const auto comm = this->problem->mechanics()->get_dof_handler().get_communicator();
+    CellDofs   u_columns, T_rows;
+    this->problem->contact_problem().heat_links(u_columns, T_rows);
+    u_columns = gather_cells(u_columns, comm);
+    T_rows    = gather_cells(T_rows, comm);
+    if (u_columns.size() == n_contact_links)
+      return;
+    n_contact_links = u_columns.size();
+    CellDofs columns(all_u), links(all_T);
+    columns.insert(columns.end(), u_columns.begin(), u_columns.end());
+    links.insert(links.end(), T_rows.begin(), T_rows.end());
+    colour_u       = colour_columns(columns, links, n_u, n_T, n_colours_u);
+    T_to_u         = T_to_u_cells;
+    T_to_T_contact.clear();
+    for (std::size_t k = 0; k < T_rows.size(); ++k)
+      for (const auto i : T_rows[k])
+        if (owned_T.is_element(i))
+          {
+            T_to_u[i].insert(T_to_u[i].end(), u_columns[k].begin(), u_columns[k].end());
+            T_to_T_contact[i].insert(T_to_T_contact[i].end(), T_rows[k].begin(), T_rows[k].end());
+          }
+    for (auto *rows : {&T_to_u, &T_to_T_contact})
+      for (auto &[i, columns] : *rows)
+        {
+          std::sort(columns.begin(), columns.end());
+          columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+        }
+    pattern_ready = false;
+    this->problem->log() << "monolithic: " << n_contact_links << " contact links, "
+                         << n_colours_u << " displacement colours" << std::endl;
   }
 
   /// b_u = −R_u and f(T, u) at (u, T): mechanics assembled with the points at T.
@@ -203,6 +255,8 @@ namespace anvil
       return false;
     b_u = mech.get_system_rhs();
     heat.set_configuration(mech.get_dof_handler(), mech.displacement());
+    if (contact_heat) // the exchange at this contact state (eq. 30–34)
+      this->problem->contact_problem().prepare_heat(step_length);
     heat.implicit_residual(t, T, f);
     return true;
   }
@@ -248,14 +302,16 @@ namespace anvil
     for (const auto i : owned_T)
       for (auto e = M.begin(i); e != M.end(i); ++e)
         sp.add(n_u + i, n_u + e->column());
-    for (const auto &[i, columns] : T_to_T)
-      for (const auto j : columns)
-        sp.add(n_u + i, n_u + j);
+    for (const auto *rows : {&T_to_T, &T_to_T_contact})
+      for (const auto &[i, columns] : *rows)
+        for (const auto j : columns)
+          sp.add(n_u + i, n_u + j);
     for (const auto &[i, columns] : T_to_u)
       for (const auto j : columns)
         sp.add(n_u + i, j);
     sp.compress();
     jacobian.reinit(sp);
+    K_nonzeros = K.n_nonzero_elements();
     pattern_ready = true;
   }
 
@@ -272,7 +328,25 @@ namespace anvil
     if (!mech.assemble_system(true))
       return false;
     heat.set_configuration(mech.get_dof_handler(), mech.displacement());
-    if (!pattern_ready)
+    const auto &c_u = mech.update_constraints();
+    const auto &c_T = heat.get_constraints();
+    // The contact exchange's ∂f/∂T at (u, T) (eq. 30, analytic): collected
+    // before the differences below move the contact state.
+    std::vector<std::tuple<types::global_dof_index, types::global_dof_index, double>> exchange;
+    if (contact_heat)
+      {
+        auto &contact = this->problem->contact_problem();
+        update_contact_links();
+        contact.prepare_heat(dt);
+        contact.exchange_tangent(
+          [&](const types::global_dof_index i) { return c_T.is_constrained(i); },
+          [&](const types::global_dof_index i, const types::global_dof_index j, const double d) {
+            if (!c_T.is_constrained(j))
+              exchange.emplace_back(i, j, d);
+          });
+      }
+    // The mechanics' pattern grows when contact finds new candidates.
+    if (!pattern_ready || mech.get_system_matrix().n_nonzero_elements() != K_nonzeros)
       build_pattern();
     heat_block.reinit(heat.get_mass_matrix());
     if (heat.uses_lumped_mass())
@@ -291,10 +365,16 @@ namespace anvil
       for (auto e = K.begin(i); e != K.end(i); ++e)
         jacobian.add(i, e->column(), e->value());
 
+    // R_T = M (T − Tₙ) − Δt f. The diagonal through K_TT (the AMG's block,
+    // copied into the Jacobian below), the slave–master couplings directly.
+    for (const auto &[i, j, d] : exchange)
+      if (i == j)
+        heat_block.add(i, i, -dt * d);
+      else
+        jacobian.add(n_u + i, n_u + j, -dt * d);
+
     // Forward differences, one colour of columns at a time; steps at the
     // square root of the round-off of each field's values.
-    const auto  &c_u = mech.update_constraints();
-    const auto  &c_T = heat.get_constraints();
     const double h_T = 1e-7 * std::max(1.0, T.linfty_norm());
     const double h_u = 1e-7 * std::max(1.0, u.linfty_norm());
     std::vector<Vector> dR_u(n_colours_T), df_T(n_colours_T), df_u(n_colours_u);
@@ -315,6 +395,8 @@ namespace anvil
         dR_u[c] = mech.get_system_rhs();
         dR_u[c] -= b_u;
         dR_u[c] *= -1. / h_T; // ∂R_u/∂T (b = −R)
+        if (contact_heat) // unchanged by T: the same exchange as in f
+          this->problem->contact_problem().prepare_heat(dt);
         heat.implicit_residual(t, T, f_c);
         df_T[c] = f_c;
         df_T[c] -= f;
@@ -336,6 +418,8 @@ namespace anvil
         if (!mech.assemble_system(false))
           return false;
         heat.set_configuration(mech.get_dof_handler(), mech.displacement());
+        if (contact_heat) // conductance and frictional power at u + h e_c
+          this->problem->contact_problem().prepare_heat(dt);
         heat.implicit_residual(t, T, f_c);
         df_u[c] = f_c;
         df_u[c] -= f;
@@ -505,6 +589,7 @@ namespace anvil
     };
 
     heat.begin_step(t_old, t_new);
+    step_length = dt;
     Vector T(heat.owned_old_temperature());
     heat.apply_dirichlet_values(t_new, T);
     // The first iterate: the mechanics converged alone at Tₙ (the isothermal
@@ -620,6 +705,11 @@ namespace anvil
     r.thermal.linear_solves        = m.iterations;
     r.mechanical_solves.push_back(m);
     r.mechanical_wall = MPI_Wtime() - start;
+    const auto &contact = p.contact_problem();
+    if (!contact.empty() && contact.last_max_penetration() > contact.maximum_penetration())
+      return fail("contact penetration " + Utilities::to_string(contact.last_max_penetration(), 3) +
+                  " mm exceeds Contact/Maximum penetration = " +
+                  Utilities::to_string(contact.maximum_penetration(), 3) + " mm");
     const double limit = p.mechanics_parameters().maximum_plastic_increment;
     if (limit > 0 && mech.largest_plastic_increment() > limit)
       return fail("the plastic strain grew by " +
