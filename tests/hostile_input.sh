@@ -138,6 +138,18 @@ expect "checkpoint: garbage state file" "'Output/Restart from'" \
 cp state.good "$state"; printf 'garbage' >> "$work/ck/checkpoint/mesh_fixed.data"
 expect "checkpoint: damaged mesh file" "'Output/Restart from'.*its file 'mesh_fixed.data' is not the one written with it" \
   "$anvil" "$P/cantilever.prm" "${o[@]}" --set "Output/Restart from=$work/ck/checkpoint"
+# A fault on one process while the other waits in the next step's collective
+# calls: run.cc's end_with() gives it 10 s to arrive, then MPI_Abort ends the
+# job with the one message and status 3 (not a hang, not a signal).
+n=$((n + 1)); start=$(date +%s)
+err=$(ANVIL_RANK_FAULT=1:3 timeout 120 mpirun -np 2 --oversubscribe "$anvil" "$P/cantilever.prm" "${o[@]}" 2>&1 >/dev/null); status=$?
+elapsed=$(( $(date +%s) - start )); mine=$(printf '%s\n' "$err" | grep "^anvil:")
+if [ $status -eq 3 ] && [ "$(printf '%s\n' "$mine" | grep -c .)" -eq 1 ] &&
+   printf '%s' "$mine" | grep -q "^anvil: simulation stopped: injected fault on process 1 after step 3"; then
+  echo "PASS  fault on one process, the other in a collective: exit 3 after ${elapsed} s: $mine"
+else
+  echo "FAIL  fault on one process, the other in a collective (exit $status after ${elapsed} s): ${err:0:600}"; fail=1
+fi
 echo "$n hostile inputs tried"
 rm -rf "$work"
 exit $fail

@@ -8,6 +8,7 @@
 #include <anvil/simulator/simulator.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -16,6 +17,24 @@
 namespace anvil
 {
   using namespace dealii;
+
+  namespace
+  {
+    // ANVIL_RANK_FAULT=R:N (tests only): process R alone fails after step N,
+    // while the others go on into the next step's collective calls and wait
+    // there: the case run.cc's end_with() must end by MPI_Abort.
+    void injected_fault(const unsigned int step)
+    {
+      const char *fault = std::getenv("ANVIL_RANK_FAULT");
+      if (!fault)
+        return;
+      const std::string f(fault), rank = f.substr(0, f.find(':'));
+      if (rank == std::to_string(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD)) &&
+          f.substr(f.find(':') + 1) == std::to_string(step))
+        throw SimulationError("injected fault on process " + rank + " after step " +
+                              std::to_string(step) + " (ANVIL_RANK_FAULT)");
+    }
+  } // namespace
 
   namespace
   {
@@ -331,6 +350,7 @@ namespace anvil
           }
 
         scheme->commit(t, t + step);
+        injected_fault(statistics.steps + 1);
         last_accepted_step = step;
         t                  = t + step;
         current_time       = t;
@@ -338,7 +358,18 @@ namespace anvil
         const bool last = t >= time.end_time - eps;
         output_step(&r, t, last);
         if (last || (checkpoint_interval > 0 && statistics.steps % checkpoint_interval == 0))
-          write_checkpoint(t, dt);
+          try
+            {
+              write_checkpoint(t, dt);
+            }
+          catch (const SimulationError &e)
+            {
+              // The histories are complete up to t: close them and say why.
+              for (auto &o : outputs)
+                o->finish(state(t, statistics.steps), true);
+              write_summary(std::string("stopped: ") + e.what());
+              throw;
+            }
         if (!quiet)
           print_step(r, t, step);
         dt = scheme->easy(r, time.easy_iterations) ?
@@ -384,7 +415,15 @@ namespace anvil
         o->finish(state(t, statistics.steps), true);
     }
     // Resume with the step of the last accepted one, not the cut one.
-    write_checkpoint(t, last_accepted_step);
+    try
+      {
+        write_checkpoint(t, last_accepted_step);
+      }
+    catch (const SimulationError &e)
+      {
+        write_summary(status + "; " + e.what());
+        throw SimulationError(status + "; " + e.what());
+      }
     write_summary(status);
     failure_reason =
       status + " (last converged state and a checkpoint written to " + output_dir + ")";
