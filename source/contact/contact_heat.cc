@@ -239,6 +239,57 @@ namespace anvil
   }
 
   template <int dim>
+  void ContactProblem<dim>::heat_links(std::vector<std::vector<types::global_dof_index>> &u_columns,
+                                       std::vector<std::vector<types::global_dof_index>> &T_rows) const
+  {
+    for (const auto &[p, pass, n, f] : allowed)
+      {
+        std::vector<types::global_dof_index> u(node_dofs[n].begin(), node_dofs[n].end()), T;
+        T.push_back(node_thermal_dof[n]);
+        for (const auto m : faces[f].nodes)
+          {
+            u.insert(u.end(), node_dofs[m].begin(), node_dofs[m].end());
+            T.push_back(node_thermal_dof[m]);
+          }
+        const Surface &slave = slave_side(p, pass);
+        for (const auto g : node_faces[n])
+          if (slave.has(faces[g]))
+            for (const auto m : faces[g].nodes)
+              u.insert(u.end(), node_dofs[m].begin(), node_dofs[m].end());
+        std::sort(u.begin(), u.end());
+        u.erase(std::unique(u.begin(), u.end()), u.end());
+        u_columns.push_back(u);
+        T_rows.push_back(T);
+      }
+  }
+
+  template <int dim>
+  void ContactProblem<dim>::exchange_tangent(
+    const std::function<bool(types::global_dof_index)>                                 &is_constrained,
+    const std::function<void(types::global_dof_index, types::global_dof_index, double)> &add) const
+  {
+    // Q = hA (T_s − Σ w_a T_a) (eq. 30) leaves the slave and enters the master
+    // nodes by the weights: ∂f_s/∂T = −∂Q/∂T, ∂f_a/∂T = w_a ∂Q/∂T.
+    for (const auto &h : heat_elements)
+      {
+        std::vector<std::pair<unsigned int, double>> dQ{{h.slave, h.hA}};
+        if (h.tool < 0)
+          for (unsigned int a = 0; a < h.n_master; ++a)
+            dQ.emplace_back(h.master[a], -h.weight[a] * h.hA);
+        auto row = [&](const unsigned int n, const double factor) {
+          const auto i = node_thermal_dof[n];
+          if (node_thermal_owned[n] && !is_constrained(i))
+            for (const auto &[m, d] : dQ)
+              add(i, node_thermal_dof[m], factor * d);
+        };
+        row(h.slave, -1.);
+        if (h.tool < 0)
+          for (unsigned int a = 0; a < h.n_master; ++a)
+            row(h.master[a], h.weight[a]);
+      }
+  }
+
+  template <int dim>
   double ContactProblem<dim>::account_heat(const Vector &T_old, const Vector &T_new, const double dt)
   {
     const auto To = gather_node_values(T_old), Tn = gather_node_values(T_new);

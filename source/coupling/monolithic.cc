@@ -1,24 +1,19 @@
 // The monolithic thermo-mechanical Newton: displacement and temperature solved
-// together in every step (doc/monolithic.md). Long because issue 11 asks for
-// the scheme as one file in coupling/ (the test of the parts' shape): its
-// Jacobian by coloured differences, block solver and tangent check serve it
-// alone. Splitting candidates: the colouring and BlockAMG (generic).
+// together in every step (doc/monolithic.md): the Newton loop, its
+// evaluations and line search. The class is in monolithic.h, its Jacobian in
+// monolithic_jacobian.cc; the column colouring (dof_colouring.cc) and the
+// block solve (block_solve.cc) are generic.
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/utilities.h>
-#include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/solver_gmres.h>
-#include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
-#include <deal.II/lac/trilinos_sparsity_pattern.h>
 
-#include <anvil/core/scene.h>
-#include <anvil/coupling/interface.h>
+#include <anvil/coupling/block_solve.h>
+
+#include "monolithic.h"
 
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <limits>
 #include <sstream>
 
 namespace anvil
@@ -27,221 +22,9 @@ namespace anvil
 
   namespace
   {
-    using Vector   = TrilinosWrappers::MPI::Vector;
-    using DofList  = std::vector<types::global_dof_index>;
-    using CellDofs = std::vector<DofList>;
-
-    /**
-     * Greedy distance-2 colouring of the columns of a block whose rows and
-     * columns couple through cells: two columns share a colour only if no
-     * cell holding one shares a node (@p link dofs) with a cell holding the
-     * other, so no residual row sees two perturbations of one colour (the
-     * Curtis–Powell–Reid compression of a finite-difference Jacobian). Every
-     * process colours the whole mesh in the same order: the same colours
-     * everywhere.
-     */
-    std::vector<unsigned int> colour_columns(const CellDofs &columns, const CellDofs &links,
-                                             const std::size_t n_columns, const std::size_t n_links,
-                                             unsigned int &n_colours)
-    {
-      std::vector<std::vector<unsigned int>> cells_of_column(n_columns), cells_of_link(n_links);
-      for (unsigned int c = 0; c < columns.size(); ++c)
-        {
-          for (const auto j : columns[c])
-            cells_of_column[j].push_back(c);
-          for (const auto l : links[c])
-            cells_of_link[l].push_back(c);
-        }
-      const unsigned int        none = std::numeric_limits<unsigned int>::max();
-      std::vector<unsigned int> colour(n_columns, none);
-      std::vector<bool>         taken;
-      n_colours = 0;
-      for (std::size_t j = 0; j < n_columns; ++j)
-        {
-          taken.assign(n_colours + 1, false);
-          for (const auto c1 : cells_of_column[j])
-            for (const auto l : links[c1])
-              for (const auto c2 : cells_of_link[l])
-                for (const auto k : columns[c2])
-                  if (colour[k] != none)
-                    taken[colour[k]] = true;
-          colour[j] = std::find(taken.begin(), taken.end(), false) - taken.begin();
-          n_colours = std::max(n_colours, colour[j] + 1);
-        }
-      return colour;
-    }
-
-    /// Every process's list, concatenated in rank order.
-    CellDofs gather_cells(const CellDofs &local, const MPI_Comm comm)
-    {
-      CellDofs all;
-      for (const auto &part : Utilities::MPI::all_gather(comm, local))
-        all.insert(all.end(), part.begin(), part.end());
-      return all;
-    }
+    using Vector = TrilinosWrappers::MPI::Vector;
   } // namespace
 
-  /**
-   * Displacement u and temperature T of the step solved together by one
-   * Newton loop (the seed's reference system, §2.2, of order (n_dim + 1)
-   * n_node): R_u(u, T) = 0 (equilibrium, eq. 12) and backward Euler for the
-   * heat equation (eq. 26), R_T = M (T − Tₙ) − Δt f(T, u) = 0, with the
-   * Jacobian
-   *   [ K_uu  K_uT ] [δu]     [R_u]
-   *   [ K_Tu  K_TT ] [δT] = − [R_T].
-   * K_uu is the mechanics' consistent tangent, M + Δt ∂(KT − F)/∂T the heat
-   * problem's own; the derivatives through the other field — dσ/dT at the
-   * points (thermal expansion, softening, temperature-dependent elasticity),
-   * the mechanical heat sources with respect to T and to u (eq. 21–25), the
-   * conduction and boundary integrals on the current configuration with
-   * respect to u — are one-sided finite differences of the assembled
-   * residuals, compressed by a distance-2 colouring of the columns (a few
-   * dozen residual assemblies per iteration, whatever the mesh size).
-   */
-  template <int dim>
-  class Monolithic : public CouplingScheme<dim>
-  {
-  public:
-    static void declare_parameters(ParameterHandler &prm)
-    {
-      prm.declare_entry("Monolithic tolerance", "1e-8", Patterns::Double(0),
-                        "monolithic: Newton stops when both residuals are below this times "
-                        "their scale (|f_int| for the mechanics, the heat of the step "
-                        "|M (T - T_n)| for the heat equation).");
-      prm.declare_entry("Monolithic iterations", "15", Patterns::Integer(1),
-                        "monolithic: Newton iterations before the step is cut back.");
-      prm.declare_entry("Monolithic linear solver", "automatic",
-                        Patterns::Selection("automatic|direct|iterative"),
-                        "monolithic: KLU on the assembled block matrix (direct), or GMRES "
-                        "preconditioned by one AMG per diagonal block (iterative); automatic: "
-                        "direct up to Monolithic direct limit unknowns.");
-      prm.declare_entry("Monolithic direct limit", "200000", Patterns::Integer(1),
-                        "monolithic: largest number of unknowns (both fields) solved directly "
-                        "by the automatic choice.");
-      prm.declare_entry("Monolithic check tangent", "false", Patterns::Bool(),
-                        "monolithic: at every iteration compare the coupled tangent with "
-                        "central finite differences of the coupled residual in a fixed "
-                        "direction, and print the relative error of each block row.");
-    }
-
-    bool needs_mechanics() const override { return true; }
-    bool needs_heat_equation() const override { return true; }
-
-    void parse_parameters(ParameterHandler &prm, const Scene &scene) override
-    {
-      prm.enter_subsection("Physics");
-      tolerance      = prm.get_double("Monolithic tolerance");
-      max_iterations = prm.get_integer("Monolithic iterations");
-      linear_solver  = prm.get("Monolithic linear solver");
-      direct_limit   = prm.get_integer("Monolithic direct limit");
-      check_tangent  = prm.get_bool("Monolithic check tangent");
-      prm.leave_subsection();
-      if (!scene.contact_pair_names().empty())
-        scene.fail("Contact/Pairs", "names contact pairs, but Physics/Coupling = monolithic does "
-                                    "not assemble the contact's coupled tangent yet: choose "
-                                    "iterated staggered for contact scenes");
-    }
-
-    void initialize(CoupledProblem<dim> &p) override
-    {
-      CouplingScheme<dim>::initialize(p);
-      p.connect_fields(false);
-      setup_structure();
-    }
-
-    StepReport<dim> advance(double t_old, double t_new) override;
-
-  private:
-    struct State; // residuals of one evaluation
-    void setup_structure();
-    bool evaluate(double t, const Vector &u, const Vector &T, Vector &b_u, Vector &f);
-    bool assemble_jacobian(double t, double dt, const Vector &u, const Vector &T,
-                           const Vector &b_u, const Vector &f);
-    void build_pattern();
-    unsigned int solve(const Vector &b_u, const Vector &b_T, Vector &du, Vector &dT);
-    double       heat_residual(const Vector &T, const Vector &f, double dt, Vector &b_T) const;
-    void         print_tangent_check(double t, double dt, const Vector &u, const Vector &T);
-    double       line_search(double t, double dt, const Vector &u, const Vector &T,
-                             const Vector &du, const Vector &dT, double scale_u, double scale_T,
-                             double merit_0);
-
-    double       tolerance = 1e-8;
-    unsigned int max_iterations = 15, direct_limit = 200000;
-    std::string  linear_solver = "automatic";
-    bool         check_tangent = false;
-
-    IndexSet                  owned_u, owned_T, owned;
-    types::global_dof_index   n_u = 0, n_T = 0;
-    std::vector<unsigned int> colour_u, colour_T;
-    unsigned int              n_colours_u = 0, n_colours_T = 0;
-    // Owned rows and the columns of the other field (or the same) they couple to.
-    std::map<types::global_dof_index, DofList> u_to_T, T_to_u, T_to_T;
-    TrilinosWrappers::SparseMatrix jacobian, heat_block; // heat_block: K_TT for the AMG
-    bool                           pattern_ready = false;
-    unsigned int                   last_linear_iterations = 0;
-  };
-
-  template <int dim>
-  void Monolithic<dim>::setup_structure()
-  {
-    auto      &mech = *this->problem->mechanics();
-    auto      &heat = *this->problem->heat();
-    const auto comm = mech.get_dof_handler().get_communicator();
-    n_u             = mech.n_dofs();
-    n_T             = heat.n_dofs();
-    owned_u         = mech.get_dof_handler().locally_owned_dofs();
-    owned_T         = heat.get_dof_handler().locally_owned_dofs();
-    owned           = IndexSet(n_u + n_T);
-    owned.add_indices(owned_u);
-    owned.add_indices(owned_T, n_u);
-    owned.compress();
-
-    // Both DoFHandlers live on one triangulation: their cells run in step.
-    CellDofs local_u, local_T;
-    DofList  du(mech.get_dof_handler().get_fe().n_dofs_per_cell());
-    DofList  dT(heat.get_dof_handler().get_fe().n_dofs_per_cell());
-    auto     cell_T = heat.get_dof_handler().begin_active();
-    for (const auto &cell_u : mech.get_dof_handler().active_cell_iterators())
-      {
-        if (cell_u->is_locally_owned() || cell_u->is_ghost())
-          {
-            cell_u->get_dof_indices(du);
-            cell_T->get_dof_indices(dT);
-            for (const auto i : du)
-              if (owned_u.is_element(i))
-                {
-                  auto &row = u_to_T[i];
-                  row.insert(row.end(), dT.begin(), dT.end());
-                }
-            for (const auto i : dT)
-              if (owned_T.is_element(i))
-                {
-                  auto &row_u = T_to_u[i];
-                  row_u.insert(row_u.end(), du.begin(), du.end());
-                  auto &row_T = T_to_T[i];
-                  row_T.insert(row_T.end(), dT.begin(), dT.end());
-                }
-            if (cell_u->is_locally_owned())
-              {
-                local_u.push_back(du);
-                local_T.push_back(dT);
-              }
-          }
-        ++cell_T;
-      }
-    for (auto *rows : {&u_to_T, &T_to_u, &T_to_T})
-      for (auto &[i, columns] : *rows)
-        {
-          std::sort(columns.begin(), columns.end());
-          columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
-        }
-    const CellDofs all_u = gather_cells(local_u, comm), all_T = gather_cells(local_T, comm);
-    colour_T = colour_columns(all_T, all_T, n_T, n_T, n_colours_T);
-    colour_u = colour_columns(all_u, all_T, n_u, n_T, n_colours_u);
-    this->problem->log() << "monolithic: " << n_u + n_T << " unknowns; the cross blocks by "
-                         << n_colours_T << " + " << n_colours_u
-                         << " coloured finite differences per iteration" << std::endl;
-  }
 
   /// b_u = −R_u and f(T, u) at (u, T): mechanics assembled with the points at T.
   template <int dim>
@@ -257,6 +40,8 @@ namespace anvil
       return false;
     b_u = mech.get_system_rhs();
     heat.set_configuration(mech.get_dof_handler(), mech.displacement());
+    if (contact_heat) // the exchange at this contact state (eq. 30–34)
+      this->problem->contact_problem().prepare_heat(step_length);
     heat.implicit_residual(t, T, f);
     return true;
   }
@@ -285,300 +70,16 @@ namespace anvil
   }
 
   template <int dim>
-  void Monolithic<dim>::build_pattern()
-  {
-    const auto                       &mech = *this->problem->mechanics();
-    const auto                       &heat = *this->problem->heat();
-    const auto                        comm = mech.get_dof_handler().get_communicator();
-    TrilinosWrappers::SparsityPattern sp(owned, comm);
-    const auto                       &K = mech.get_system_matrix();
-    for (const auto i : owned_u)
-      for (auto e = K.begin(i); e != K.end(i); ++e)
-        sp.add(i, e->column());
-    for (const auto &[i, columns] : u_to_T)
-      for (const auto j : columns)
-        sp.add(i, n_u + j);
-    const auto &M = heat.get_mass_matrix();
-    for (const auto i : owned_T)
-      for (auto e = M.begin(i); e != M.end(i); ++e)
-        sp.add(n_u + i, n_u + e->column());
-    for (const auto &[i, columns] : T_to_T)
-      for (const auto j : columns)
-        sp.add(n_u + i, n_u + j);
-    for (const auto &[i, columns] : T_to_u)
-      for (const auto j : columns)
-        sp.add(n_u + i, j);
-    sp.compress();
-    jacobian.reinit(sp);
-    pattern_ready = true;
-  }
-
-  template <int dim>
-  bool Monolithic<dim>::assemble_jacobian(const double t, const double dt, const Vector &u,
-                                          const Vector &T, const Vector &b_u, const Vector &f)
-  {
-    auto &mech = *this->problem->mechanics();
-    auto &heat = *this->problem->heat();
-    // The diagonal blocks at (u, T): the mechanics' tangent, M + Δt A.
-    heat.set_temperature(T);
-    this->problem->point_temperatures_from_heat_field();
-    mech.set_displacement(u);
-    if (!mech.assemble_system(true))
-      return false;
-    heat.set_configuration(mech.get_dof_handler(), mech.displacement());
-    if (!pattern_ready)
-      build_pattern();
-    heat_block.reinit(heat.get_mass_matrix());
-    if (heat.uses_lumped_mass())
-      {
-        heat_block = 0;
-        for (const auto i : owned_T)
-          heat_block.set(i, i, heat.lumped_mass_vector()(i));
-        heat_block.compress(VectorOperation::insert);
-      }
-    else
-      heat_block.copy_from(heat.get_mass_matrix());
-    heat_block.add(dt, heat.implicit_tangent(t, T));
-    jacobian = 0;
-    const auto &K = mech.get_system_matrix();
-    for (const auto i : owned_u)
-      for (auto e = K.begin(i); e != K.end(i); ++e)
-        jacobian.add(i, e->column(), e->value());
-
-    // Forward differences, one colour of columns at a time; steps at the
-    // square root of the round-off of each field's values.
-    const auto  &c_u = mech.update_constraints();
-    const auto  &c_T = heat.get_constraints();
-    const double h_T = 1e-7 * std::max(1.0, T.linfty_norm());
-    const double h_u = 1e-7 * std::max(1.0, u.linfty_norm());
-    std::vector<Vector> dR_u(n_colours_T), df_T(n_colours_T), df_u(n_colours_u);
-    Vector              b_c(b_u), f_c(f);
-    for (unsigned int c = 0; c < n_colours_T; ++c)
-      {
-        Vector Tc(T);
-        for (const auto j : owned_T)
-          if (colour_T[j] == c && !c_T.is_constrained(j))
-            Tc(j) += h_T;
-        Tc.compress(VectorOperation::insert);
-        // The mechanics at T + h e_c; its heat sources into f at T (the
-        // conduction's own T-dependence is in A).
-        heat.set_temperature(Tc);
-        this->problem->point_temperatures_from_heat_field();
-        if (!mech.assemble_system(false))
-          return false;
-        dR_u[c] = mech.get_system_rhs();
-        dR_u[c] -= b_u;
-        dR_u[c] *= -1. / h_T; // ∂R_u/∂T (b = −R)
-        heat.implicit_residual(t, T, f_c);
-        df_T[c] = f_c;
-        df_T[c] -= f;
-        df_T[c] *= 1. / h_T;
-      }
-    heat.set_temperature(T);
-    this->problem->point_temperatures_from_heat_field();
-    for (unsigned int c = 0; c < n_colours_u; ++c)
-      {
-        Vector du(u);
-        du = 0;
-        for (const auto j : owned_u)
-          if (colour_u[j] == c && !c_u.is_constrained(j))
-            du(j) = h_u;
-        du.compress(VectorOperation::insert);
-        c_u.distribute(du); // hanging nodes follow their masters
-        du += u;
-        mech.set_displacement(du);
-        if (!mech.assemble_system(false))
-          return false;
-        heat.set_configuration(mech.get_dof_handler(), mech.displacement());
-        heat.implicit_residual(t, T, f_c);
-        df_u[c] = f_c;
-        df_u[c] -= f;
-        df_u[c] *= 1. / h_u;
-      }
-    mech.set_displacement(u);
-    heat.set_configuration(mech.get_dof_handler(), mech.displacement());
-
-    // R_T = M (T − Tₙ) − Δt f: ∂R_T/∂x = −Δt ∂f/∂x.
-    for (const auto &[i, columns] : T_to_T)
-      if (!c_T.is_constrained(i))
-        for (const auto j : columns)
-          if (!c_T.is_constrained(j))
-            heat_block.add(i, j, -dt * df_T[colour_T[j]](i));
-    heat_block.compress(VectorOperation::add);
-    for (const auto i : owned_T)
-      for (auto e = heat_block.begin(i); e != heat_block.end(i); ++e)
-        jacobian.add(n_u + i, n_u + e->column(), e->value());
-    for (const auto &[i, columns] : u_to_T)
-      if (!c_u.is_constrained(i))
-        for (const auto j : columns)
-          if (!c_T.is_constrained(j))
-            jacobian.add(i, n_u + j, dR_u[colour_T[j]](i));
-    for (const auto &[i, columns] : T_to_u)
-      if (!c_T.is_constrained(i))
-        for (const auto j : columns)
-          if (!c_u.is_constrained(j))
-            jacobian.add(n_u + i, j, -dt * df_u[colour_u[j]](i));
-    jacobian.compress(VectorOperation::add);
-    return true;
-  }
-
-  namespace
-  {
-    /// Block-diagonal preconditioner: one AMG per field.
-    struct BlockAMG
-    {
-      BlockAMG(const IndexSet &owned_u, const IndexSet &owned_T, types::global_dof_index n_u,
-               const Vector &u_layout, const Vector &T_layout)
-        : owned_u(owned_u)
-        , owned_T(owned_T)
-        , n_u(n_u)
-        , src_u(u_layout)
-        , src_T(T_layout)
-        , dst_u(u_layout)
-        , dst_T(T_layout)
-      {}
-      const IndexSet                   &owned_u, &owned_T;
-      types::global_dof_index           n_u;
-      TrilinosWrappers::PreconditionAMG amg_u, amg_T;
-      mutable Vector                    src_u, src_T, dst_u, dst_T;
-      void                              vmult(Vector &dst, const Vector &src) const
-      {
-        for (const auto i : owned_u)
-          src_u(i) = src(i);
-        for (const auto i : owned_T)
-          src_T(i) = src(n_u + i);
-        src_u.compress(VectorOperation::insert);
-        src_T.compress(VectorOperation::insert);
-        amg_u.vmult(dst_u, src_u);
-        amg_T.vmult(dst_T, src_T);
-        for (const auto i : owned_u)
-          dst(i) = dst_u(i);
-        for (const auto i : owned_T)
-          dst(n_u + i) = dst_T(i);
-        dst.compress(VectorOperation::insert);
-      }
-    };
-  } // namespace
-
-  template <int dim>
   unsigned int Monolithic<dim>::solve(const Vector &b_u, const Vector &b_T, Vector &du, Vector &dT)
   {
-    const auto comm = this->problem->mechanics()->get_dof_handler().get_communicator();
-    Vector     b(owned, comm), x(owned, comm);
-    for (const auto i : owned_u)
-      b(i) = b_u(i);
-    for (const auto i : owned_T)
-      b(n_u + i) = b_T(i);
-    b.compress(VectorOperation::insert);
-    unsigned int iterations = 1;
-    const bool   direct =
+    const bool direct =
       linear_solver == "direct" || (linear_solver == "automatic" && n_u + n_T <= direct_limit);
-    if (direct)
-      {
-        SolverControl                  control(1, 0);
-        TrilinosWrappers::SolverDirect solver(control, TrilinosWrappers::SolverDirect::AdditionalData(
-                                                         false, "Amesos_Klu"));
-        solver.solve(jacobian, x, b);
-      }
-    else
-      {
-        BlockAMG p(owned_u, owned_T, n_u, b_u, b_T);
-        TrilinosWrappers::PreconditionAMG::AdditionalData data_u, data_T;
-        data_u.elliptic = data_T.elliptic = true;
-        data_u.smoother_sweeps = data_T.smoother_sweeps = 2;
-        data_u.aggregation_threshold                    = 0.02;
-        p.amg_u.initialize(this->problem->mechanics()->get_system_matrix(), data_u);
-        p.amg_T.initialize(heat_block, data_T);
-        SolverControl control(1000, 1e-10 * b.l2_norm());
-        SolverGMRES<Vector> gmres(control, SolverGMRES<Vector>::AdditionalData(50));
-        gmres.solve(jacobian, x, b, p);
-        iterations = control.last_step();
-      }
-    for (const auto i : owned_u)
-      du(i) = x(i);
-    for (const auto i : owned_T)
-      dT(i) = x(n_u + i);
-    du.compress(VectorOperation::insert);
-    dT.compress(VectorOperation::insert);
+    const TwoFieldSystem system{jacobian, this->problem->mechanics()->get_system_matrix(),
+                                heat_block, owned_u, owned_T, owned, n_u};
+    const unsigned int   iterations = solve_two_field(system, b_u, b_T, du, dT, direct);
     this->problem->mechanics()->update_constraints().distribute(du);
     this->problem->heat()->get_constraints().distribute(dT);
     return iterations;
-  }
-
-  template <int dim>
-  void Monolithic<dim>::print_tangent_check(const double t, const double dt, const Vector &u,
-                                            const Vector &T)
-  {
-    // A fixed direction on the free dofs of both fields, each scaled to its
-    // own values: J v against (R(x + v) − R(x − v)) / 2, block row by block row.
-    const auto  &c_u = this->problem->mechanics()->update_constraints();
-    const auto  &c_T = this->problem->heat()->get_constraints();
-    const auto   comm = this->problem->mechanics()->get_dof_handler().get_communicator();
-    const double s_u  = 1e-6 * std::max(1.0, u.linfty_norm());
-    const double s_T  = 1e-6 * std::max(1.0, T.linfty_norm());
-    Vector       v_u(u), v_T(T), v(owned, comm), Jv(owned, comm);
-    for (const auto i : owned_u)
-      v_u(i) = c_u.is_constrained(i) ? 0. : s_u * std::sin(1.0 + 7.3 * i);
-    for (const auto i : owned_T)
-      v_T(i) = c_T.is_constrained(i) ? 0. : s_T * std::sin(2.0 + 3.1 * i);
-    v_u.compress(VectorOperation::insert);
-    v_T.compress(VectorOperation::insert);
-    for (const auto i : owned_u)
-      v(i) = v_u(i);
-    for (const auto i : owned_T)
-      v(n_u + i) = v_T(i);
-    v.compress(VectorOperation::insert);
-    jacobian.vmult(Jv, v);
-    Vector Jv_u(u), Jv_T(T);
-    for (const auto i : owned_u)
-      Jv_u(i) = Jv(i);
-    for (const auto i : owned_T)
-      Jv_T(i) = Jv(n_u + i);
-    Jv_u.compress(VectorOperation::insert);
-    Jv_T.compress(VectorOperation::insert);
-
-    Vector r_u[2], r_T[2], f(T);
-    for (const int side : {0, 1})
-      {
-        Vector us(u), Ts(T);
-        us.add(side == 0 ? 1. : -1., v_u);
-        Ts.add(side == 0 ? 1. : -1., v_T);
-        r_u[side] = u;
-        r_T[side] = T;
-        if (!evaluate(t, us, Ts, r_u[side], f))
-          {
-            this->problem->log() << "    coupled tangent check: an element inverted" << std::endl;
-            return;
-          }
-        heat_residual(Ts, f, dt, r_T[side]);
-      }
-    // b = −R: (R(x + v) − R(x − v)) / 2 = (b(x − v) − b(x + v)) / 2.
-    r_u[1] -= r_u[0];
-    r_u[1] *= 0.5;
-    r_T[1] -= r_T[0];
-    r_T[1] *= 0.5;
-    // The cross blocks' share of J v: what the check would miss without them.
-    Vector Kv_u(u), Kv_T(T);
-    this->problem->mechanics()->get_system_matrix().vmult(Kv_u, v_u);
-    heat_block.vmult(Kv_T, v_T);
-    Kv_u -= Jv_u;
-    Kv_T -= Jv_T;
-    for (const auto i : owned_u)
-      if (c_u.is_constrained(i))
-        Kv_u(i) = 0;
-    Kv_u.compress(VectorOperation::insert);
-    const double share_u = Kv_u.l2_norm() / std::max(Jv_u.l2_norm(), 1e-300);
-    const double share_T = Kv_T.l2_norm() / std::max(Jv_T.l2_norm(), 1e-300);
-    const double n_u_fd = r_u[1].l2_norm(), n_T_fd = r_T[1].l2_norm();
-    r_u[1] -= Jv_u;
-    r_T[1] -= Jv_T;
-    const double e_u = r_u[1].l2_norm() / std::max(n_u_fd, 1e-300);
-    const double e_T = r_T[1].l2_norm() / std::max(n_T_fd, 1e-300);
-    this->problem->log() << "    coupled tangent check: |J v - FD| / |FD| = "
-                         << std::max(e_u, e_T) << " (displacement rows " << e_u
-                         << ", temperature rows " << e_T << "); cross-block share of J v: "
-                         << share_u << " (displacement rows), " << share_T << " (temperature rows)"
-                         << std::endl;
   }
 
   template <int dim>
@@ -629,6 +130,7 @@ namespace anvil
     };
 
     heat.begin_step(t_old, t_new);
+    step_length = dt;
     Vector T(heat.owned_old_temperature());
     heat.apply_dirichlet_values(t_new, T);
     // The first iterate: the mechanics converged alone at Tₙ (the isothermal
@@ -744,6 +246,11 @@ namespace anvil
     r.thermal.linear_solves        = m.iterations;
     r.mechanical_solves.push_back(m);
     r.mechanical_wall = MPI_Wtime() - start;
+    const auto &contact = p.contact_problem();
+    if (!contact.empty() && contact.last_max_penetration() > contact.maximum_penetration())
+      return fail("contact penetration " + Utilities::to_string(contact.last_max_penetration(), 3) +
+                  " mm exceeds Contact/Maximum penetration = " +
+                  Utilities::to_string(contact.maximum_penetration(), 3) + " mm");
     const double limit = p.mechanics_parameters().maximum_plastic_increment;
     if (limit > 0 && mech.largest_plastic_increment() > limit)
       return fail("the plastic strain grew by " +
@@ -758,3 +265,4 @@ namespace anvil
     "for the heat equation, the full coupled tangent (the seed's reference system, §2.2; "
     "doc/monolithic.md).")
 } // namespace anvil
+

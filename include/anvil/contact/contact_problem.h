@@ -175,6 +175,26 @@ namespace anvil
     /// The exchange as the thermal problem applies it (eq. 30–33).
     HeatExchange heat_exchange(const std::function<bool(dealii::types::global_dof_index)> &is_constrained);
     /**
+     * For a Newton over both fields (coupling/monolithic.cc): for every slave
+     * node and master face that may touch in this step (this process's
+     * slave nodes), the displacement dofs its heat exchange depends on — the
+     * node, the face's nodes (pressure, slip, projection) and the node's
+     * neighbours on its surface (its area) — in @p u_columns, and the
+     * temperature dofs it writes (the node, the face's nodes) in @p T_rows.
+     * A tool's exchange writes the slave node only, within its cells: none.
+     */
+    void heat_links(std::vector<std::vector<dealii::types::global_dof_index>> &u_columns,
+                    std::vector<std::vector<dealii::types::global_dof_index>> &T_rows) const;
+    /**
+     * ∂f/∂T of the exchange prepared last (eq. 30, h A frozen), f the heat
+     * problem's right-hand side, as (row, column, value) to @p add: the rows
+     * this process owns and that @p is_constrained does not name.
+     */
+    void exchange_tangent(
+      const std::function<bool(dealii::types::global_dof_index)> &is_constrained,
+      const std::function<void(dealii::types::global_dof_index, dealii::types::global_dof_index, double)>
+        &add) const;
+    /**
      * After an accepted thermal phase: heat exchanged over the step
      * (trapezoidal in T), friction heat; returns the heat that entered the
      * bodies from the contact: friction heat plus what rigid tools gave (mJ).
