@@ -78,7 +78,10 @@ def runs_of(path):
         return [(os.path.basename(os.path.normpath(path)), path)]
     out = []
     for key in sorted(os.listdir(os.path.join(path, "runs"))):
-        rec = json.load(open(os.path.join(path, "runs", key, "record.json")))
+        record = os.path.join(path, "runs", key, "record.json")
+        if not os.path.exists(record):      # a run still going (or killed)
+            continue
+        rec = json.load(open(record))
         entries = dict(rec.get("overrides", []))
         label = ", ".join("%s=%s" % (k.split("/")[-1], entries[k]) for k in LADDER_KEYS if k in entries)
         out.append(("%s: %s" % (os.path.basename(os.path.normpath(path)), label),
