@@ -57,12 +57,14 @@ cases = [("ladder entry the scene lacks", text.replace("set Time/Time step = 0.1
                        "set Time/Time step = 0.1 | 0.05\n  set Time/End time = 1 | 2 | 3"), "levels"),
          ("quantity of interest the scene lacks", text.replace("set s = summary", "set s = summary s_max"), "s_max"),
          ("no reference", text[:text.index("subsection Reference")], "Reference")]
-for n, (what, body, word) in enumerate(cases):
+cases = [c + ((),) for c in cases]
+cases.append(("--set of a study entry", text, "Concurrent runs", ("--set", "Study/Concurrent runs=1")))
+for n, (what, body, word, extra) in enumerate(cases):
     path = os.path.join(BASE, "bad_%d.prm" % n)
     with open(path, "w") as f:
         f.write(body)
     out = os.path.join(BASE, "bad_%d" % n)
-    p = study(path, out)
+    p = study(path, out, extra)
     lines = [l for l in p.stderr.split("\n") if l.strip()]
     print("  %s: %s" % (what, lines[0] if lines else ""))
     check(p.returncode == 2 and len(lines) == 1 and path in lines[0] and word in lines[0]

@@ -5,7 +5,8 @@ reproduces the one-dof prediction of doc/thermal.md for the splits
  - isothermal split, heat capacity at constant volume: d_n = -tau_v r d_(n-1),
    stable for tau_v r < 1, so the largest stable tau_r = tau_v r is 1; the
    bisection (7 steps on [0.5, 10], log scale) must find it within 10 %;
- - adiabatic split: stable for every tau, so no limit over the range.
+ - adiabatic split: stable for every tau, so no limit over the range;
+ - monolithic (backward Euler on the coupled system, no lag): no limit either.
 """
 import csv
 import os
@@ -29,5 +30,8 @@ close(float(iso["largest_stable_tau_r"]), 1.0, 0.10, "isothermal split: largest 
 close(float(iso["smallest_unstable_tau_r"]), 1.0, 0.10, "isothermal split: smallest tau_v r found unstable")
 check(adi["state"] == "stable over the range",
       "adiabatic split: no limit up to tau_v r = 10 (%s, %s trial(s))" % (adi["state"], adi["trials"]))
+mono = rows["monolithic"]
+check(mono["state"] == "stable over the range",
+      "monolithic: no limit up to tau_v r = 10 (%s, %s trial(s))" % (mono["state"], mono["trials"]))
 check(os.path.getsize(os.path.join(out, "stability.png")) > 0, "stability.png written")
 finish()

@@ -47,6 +47,11 @@ def cli_overrides(sets, path):
         if "=" not in s or "/" not in s.split("=", 1)[0]:
             raise StudyInputError("%s: --set '%s': expected 'Section/Entry=value'" % (path, s))
         k, v = s.split("=", 1)
+        if k.strip().split("/")[0] in ("Study", "Set", "Quantities", "Reference", "Stability", "Physics cost") \
+                or k.strip().startswith("Ladder"):
+            raise StudyInputError("%s: --set '%s': --set changes the scene's entries; the study's own "
+                                  "(subsection %s) are options (--jobs, --repeats, --output) or lines "
+                                  "of the study file" % (path, s, k.strip().split("/")[0]))
         out.append((k.strip(), v.strip()))
     return out
 

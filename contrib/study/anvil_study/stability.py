@@ -234,6 +234,15 @@ def plot_stability(study, stab, points, path):
     for p in points:
         key = ", ".join(study.ladders[k].label(p["levels"][k]) for k in schemes) or "runs"
         groups.setdefault(key, []).append(p)
+    # Schemes without a limit all sit at the range's end: side by side, not
+    # hidden behind each other.
+    at_end = [key for key, members in groups.items() if any(p["state"] != "limit" for p in members)]
+    log_x = bool(axis) and all(v > 0 for v in study.ladders[axis[0]].values)
+
+    def beside(x, key):
+        k = at_end.index(key) - (len(at_end) - 1) / 2
+        return x * 1.15 ** k if log_x else x + 0.08 * k
+
     for n, (key, members) in enumerate(groups.items()):
         xs = [study.ladders[axis[0]].values[p["levels"][axis[0]]] if axis else n for p in members]
         color = "C%d" % n
@@ -241,9 +250,9 @@ def plot_stability(study, stab, points, path):
             if p["state"] == "limit":
                 ax.plot([x, x], [p["lo"], p["hi"]], "-", color=color, lw=3)
             elif p["state"] == "stable over the range":
-                ax.plot(x, stab.hi, "^", color=color, ms=10)
+                ax.plot(beside(x, key), stab.hi, "^", color=color, ms=10)
             else:
-                ax.plot(x, stab.lo, "v", color=color, ms=10)
+                ax.plot(beside(x, key), stab.lo, "v", color=color, ms=10)
         lim = [(x, p["estimate"]) for x, p in zip(xs, members) if p["state"] == "limit"]
         if lim:
             ax.plot([q[0] for q in lim], [q[1] for q in lim], "o-", color=color, label=key + ": limit")
