@@ -65,4 +65,41 @@ for col in ("fold_normal", "fold_Fy", "fold_active_nodes", "fold_max_penetration
     scale = max(abs(a) for a in c[col]) or 1
     check(len(c[col]) == len(c2[col]) and diff <= 1e-8 * scale,
           "np = 2 equals np = 1: %s (largest difference %.3g)" % (col, diff))
+
+# 3D: the plate folded onto itself, per mm of its 2 mm width against the strip.
+width = 2.0
+out, _, _ = run("tests/self_contact_strip.prm", ["Mechanics/Element=standard", "Time/Time step=0.025",
+                                                 "Time/Maximum time step=0.025"], name="self_contact_strip_q1")
+cq = read_csv(out + "/contact.csv")
+plate = {}
+for np in (1, 2):
+    out, s3, _ = run("tests/self_contact_plate_3d.prm", np=np, name="self_contact_plate_3d_np%d" % np)
+    plate[np] = (read_csv(out + "/contact.csv"), read_csv(out + "/reactions.csv"), s3)
+c3, r3, s3 = plate[1]
+k = len(c3["time"]) - 1
+kq = len(cq["time"]) - 1
+print("  plate (3D): %d steps, %d active nodes, sum t_N = %.3f N (%.3f N/mm; strip %.3f N/mm), max penetration "
+      "%.4f mm" % (len(c3["time"]), c3["fold_active_nodes"][k], c3["fold_normal"][k], c3["fold_normal"][k] / width,
+                   cq["fold_normal"][kq], c3["fold_max_penetration"][k]))
+check(len(c3["time"]) == len(cq["time"]), "3D plate and strip march the same steps (%d, %d)"
+      % (len(c3["time"]), len(cq["time"])))
+check(c3["time"][-1] > 1 - 1e-9 and c3["fold_active_nodes"][k] >= 8,
+      "3D plate folded onto itself: touches itself (%d nodes)" % c3["fold_active_nodes"][k])
+for col in ("fold_normal", "pressing_Fy", "support_Fy"):
+    close(c3[col][k] / width, cq[col][kq], 1e-8, "3D plate = plane-strain strip, %s per mm of width" % col,
+          atol=1e-8 * cq["fold_normal"][kq])
+close(c3["fold_max_penetration"][k], cq["fold_max_penetration"][kq], 1e-8, "3D plate = strip: largest penetration")
+node_force3 = 0.5 * 1e4 * c3["fold_max_penetration"][k] * 2   # an edge row: two nodes across the width
+check(abs(c3["fold_Fy"][k]) <= node_force3, "3D pressure balance: |sum of the slave forces, y| = %.3g N, at most "
+      "one edge row's force %.3g N" % (abs(c3["fold_Fy"][k]), node_force3))
+close(c3["pressing_Fy"][k] + c3["support_Fy"][k] + r3["left_Fy"][-1], 0, 0, "3D global balance: press + floor "
+      "+ clamp = 0", atol=1e-6 * abs(c3["pressing_Fy"][k]))
+check(max(c3["fold_max_penetration"]) <= limit, "3D: no penetration beyond the limit: %.4f <= %.2f mm"
+      % (max(c3["fold_max_penetration"]), limit))
+c32 = plate[2][0]
+for col in ("fold_normal", "fold_Fy", "fold_active_nodes", "fold_max_penetration"):
+    diff = max(abs(a - b) for a, b in zip(c3[col], c32[col]))
+    scale = max(abs(a) for a in c3[col]) or 1
+    check(len(c3[col]) == len(c32[col]) and diff <= 1e-8 * scale,
+          "3D np = 2 equals np = 1: %s (largest difference %.3g)" % (col, diff))
 finish()
