@@ -72,6 +72,13 @@ namespace anvil
                       "Factor by which the step grows after an easy step (dimensionless).");
     prm.declare_entry("Easy step iterations", "5", Patterns::Integer(0),
                       "A step that converged in at most this many Newton iterations is easy.");
+    prm.declare_entry("Breakpoints", "", Patterns::List(Patterns::Double(0)),
+                      "Times in s, increasing, > 0, where the loading changes character (end of "
+                      "a ramp, start of an unloading): a step lands on each and the next one "
+                      "restarts from 'Step after breakpoint'. Those past End time are ignored "
+                      "(a shortened run keeps the scene's list). Empty: none.");
+    prm.declare_entry("Step after breakpoint", "0", Patterns::Double(0),
+                      "First step after a breakpoint, s; 0 means Time step.");
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
@@ -137,7 +144,17 @@ namespace anvil
     time.maximum_time_step = prm.get_double("Maximum time step");
     time.growth_factor     = prm.get_double("Growth factor");
     time.easy_iterations   = prm.get_integer("Easy step iterations");
+    const auto breakpoints = Utilities::string_to_double(
+      Utilities::split_string_list(prm.get("Breakpoints")));
+    time.step_after_breakpoint = prm.get_double("Step after breakpoint");
     prm.leave_subsection();
+    for (unsigned int i = 0; i < breakpoints.size(); ++i)
+      if (!(breakpoints[i] > (i == 0 ? 0. : breakpoints[i - 1])))
+        scene.fail("Time/Breakpoints", "= " + Utilities::to_string(breakpoints[i]) +
+                                         " s: expected increasing times > 0 s");
+    time.breakpoints = StepBreakpoints(breakpoints);
+    if (time.step_after_breakpoint == 0)
+      time.step_after_breakpoint = time.time_step;
     if (!(time.time_step > 0))
       scene.fail("Time/Time step", "must be > 0 s");
     if (time.minimum_time_step == 0)
@@ -319,7 +336,7 @@ namespace anvil
     const double eps = 1e-12 * time.end_time;
     while (t < time.end_time - eps)
       {
-        const double step = std::min(dt, time.end_time - t);
+        const double step = time.breakpoints.clip(t, std::min(dt, time.end_time - t), eps);
         auto         r    = scheme->advance(t, t + step);
         // A formula that gave NaN or inf is the scene's error: no cut-back.
         throw_recorded_input_error(mpi_communicator);
@@ -375,6 +392,9 @@ namespace anvil
         dt = scheme->easy(r, time.easy_iterations) ?
                std::min(step * time.growth_factor, time.maximum_time_step) :
                step;
+        // The next phase starts like the run: small, growing while Newton is easy.
+        if (time.breakpoints.lands_on(t, eps))
+          dt = time.step_after_breakpoint;
       }
 
     throw_recorded_input_error(mpi_communicator);

@@ -10,6 +10,7 @@
 #include <anvil/coupling/interface.h>
 #include <anvil/geometry/geometry.h>
 #include <anvil/postprocess/interface.h>
+#include <anvil/simulator/step_breakpoints.h>
 
 #include <map>
 #include <memory>
@@ -59,6 +60,9 @@ namespace anvil
     {
       double       end_time, time_step, minimum_time_step, maximum_time_step, growth_factor;
       unsigned int easy_iterations;
+      // Time/Breakpoints and the step the loop restarts with after each.
+      StepBreakpoints breakpoints;
+      double          step_after_breakpoint;
     };
 
     bool run_steps();
