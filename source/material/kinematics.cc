@@ -7,15 +7,33 @@ namespace anvil
 {
   using namespace dealii;
 
-  void IncrementalKinematics::reinit(const Tensor<2, 3> &F_new, const Tensor<2, 3> &F_old)
+  void IncrementalKinematics::reinit(const Tensor<2, 3> &F_new, const Tensor<2, 3> &F_old_in,
+                                     const ObjectiveRate rate_in)
   {
+    rate  = rate_in;
     F     = F_new;
+    F_old = F_old_in;
     J     = determinant(F);
     F_inv = invert(F);
     F_half_inv = invert(0.5 * (F + F_old));
     dL         = (F - F_old) * F_half_inv;
-    const Tensor<2, 3> half_spin = 0.25 * (dL - transpose(dL));
     const Tensor<2, 3> I         = unit_symmetric_tensor<3>();
+    if (rate == ObjectiveRate::green_naghdi)
+      {
+        // ΔR = R_n+1 R_nᵀ, R_h = R_n+1 R_½ᵀ (polar rotations; A_inv, A_half_inv unused).
+        const Tensor<2, 3> R = polar_rotation(F);
+        rotation_increment   = R * transpose(polar_rotation(F_old));
+        half_rotation        = R * transpose(polar_rotation(0.5 * (F + F_old)));
+        mid_strain           = symmetrize(dL);
+        strain_increment =
+          symmetrize(half_rotation * Tensor<2, 3>(mid_strain) * transpose(half_rotation));
+        return;
+      }
+    // ½Δω: Jaumann's skew ΔL, or the log spin (logarithmic_rate.cc).
+    const Tensor<2, 3> half_spin =
+      rate == ObjectiveRate::logarithmic ?
+        Tensor<2, 3>(0.5 * logarithmic_spin_increment(0.5 * (F + F_old), dL)) :
+        Tensor<2, 3>(0.25 * (dL - transpose(dL)));
     A_inv                        = invert(I - half_spin);
     rotation_increment           = A_inv * (I + half_spin);
     // The strain increment lives on the mid-point configuration: rotate it
@@ -40,6 +58,8 @@ namespace anvil
                       const TangentDirections     &directions,
                       SymmetricTensor<2, 3>       *dsigma)
   {
+    if (kin.rate != ObjectiveRate::jaumann)
+      return rate_cauchy_tangent(kin, stress_old, response, directions, dsigma);
     const Tensor<2, 3> I          = unit_symmetric_tensor<3>();
     const Tensor<2, 3> I_minus    = I - 0.5 * kin.dL;
     const Tensor<2, 3> one_plus_R = I + kin.rotation_increment;

@@ -169,6 +169,9 @@ namespace anvil
                       "'Fij: expression' items, i, j in 1..3, muparser in t (s) and pi, e.g. "
                       "'F11: 1 + t; F12: 0.5*t'. Components not named are those of the "
                       "identity; F(0) must be the identity and det F > 0 along the path.");
+    prm.declare_entry("Objective rate", "Jaumann", Patterns::Selection(objective_rate_selection()),
+                      "Control = deformation gradient: the objective stress rate, as "
+                      "Mechanics/Objective rate of a scene (Jaumann, Green-Naghdi, logarithmic).");
     prm.declare_entry("Temperature", "293", Patterns::Anything(),
                       "Temperature of the point in K as a muparser expression in t (s), "
                       "e.g. '293 + 100*t'; must stay > 0.");
@@ -230,6 +233,7 @@ namespace anvil
     const std::string F           = prm.get("Deformation gradient");
     const std::string temperature_text = prm.get("Temperature");
     adiabatic = prm.get_bool("Adiabatic");
+    objective_rate = objective_rate_from_string(prm.get("Objective rate"));
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
@@ -540,7 +544,7 @@ namespace anvil
             else
               {
                 const Tensor<2, 3> F = F_at(t);
-                kinematics.reinit(F, F_old);
+                kinematics.reinit(F, F_old, objective_rate);
                 increment.strain_increment   = kinematics.strain_increment;
                 increment.rotation_increment = kinematics.rotation_increment;
                 response                     = MaterialResponse();

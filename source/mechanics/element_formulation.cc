@@ -13,9 +13,10 @@ namespace anvil
 
     template <int dim>
     Formulation<dim>::Formulation(const FiniteElement<dim> &fe, const bool axisymmetric,
-                                  const bool f_bar)
+                                  const bool f_bar, const ObjectiveRate objective_rate)
       : axisymmetric(axisymmetric)
       , f_bar(f_bar)
+      , objective_rate(objective_rate)
       , plane_strain(dim == 2 && !axisymmetric)
       , alpha((dim == 2 && !axisymmetric) ? 0.5 : 1. / 3.)
       // The directions of δF this formulation needs and where each lives.

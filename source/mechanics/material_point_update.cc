@@ -60,7 +60,7 @@ namespace anvil
       if (context.formulation->f_bar)
         {
           IncrementalKinematics true_kin;
-          true_kin.reinit(F, F_old);
+          true_kin.reinit(F, F_old, context.formulation->objective_rate);
           terms[audit_stress_work] =
             (mean_stress(true_kin, sigma_n, r.stress) * true_kin.strain_increment) * dv_half;
         }
@@ -141,7 +141,7 @@ namespace anvil
           if (formulation.f_bar)
             F_mat = f_bar.material_gradient(scratch, F, F_old, beta, F_mat_old);
           IncrementalKinematics &kin = p.kin;
-          kin.reinit(F_mat, F_mat_old);
+          kin.reinit(F_mat, F_mat_old, formulation.objective_rate);
           increment.strain_increment   = kin.strain_increment;
           increment.rotation_increment = kin.rotation_increment;
           increment.temperature        = heat ? scratch.T_new[q] : context.reference_temperature;

@@ -4,6 +4,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <anvil/material/material_point.h>
+#include <anvil/material/objective_rates.h>
 
 #include <array>
 #include <utility>
@@ -28,12 +29,21 @@ namespace anvil
    * increments integrates the Jaumann rate with second-order accuracy.
    *
    * F is 3x3 always: plane strain embeds the 2x2 gradient with F₃₃ = 1.
+   *
+   * Other objective rates (objective_rates.h) change only Δω and R_h:
+   *  - logarithmic: Δω = Ω^log Δt, the log spin at F_½ (Xiao et al. 1997),
+   *    with the same Cayley transforms as above;
+   *  - Green–Naghdi: ΔR = R_n+1 R_nᵀ and R_h = R_n+1 R_½ᵀ from the polar
+   *    rotations of F, F_n and F_½ (total F: the reference is F = I). In the
+   *    frame of R, σ̂ = Rᵀσ R, this is the mid-point rule for dσ̂/dt = H : RᵀDR.
    */
   struct IncrementalKinematics
   {
-    void reinit(const dealii::Tensor<2, 3> &F, const dealii::Tensor<2, 3> &F_old);
+    void reinit(const dealii::Tensor<2, 3> &F, const dealii::Tensor<2, 3> &F_old,
+                ObjectiveRate rate = ObjectiveRate::jaumann);
 
-    dealii::Tensor<2, 3>          F, F_inv, F_half_inv, dL, A_inv, A_half_inv, half_rotation;
+    ObjectiveRate                 rate = ObjectiveRate::jaumann;
+    dealii::Tensor<2, 3>          F, F_old, F_inv, F_half_inv, dL, A_inv, A_half_inv, half_rotation;
     double                        J = 1.;
     /// sym ΔL on the mid-point configuration.
     dealii::SymmetricTensor<2, 3> mid_strain;
@@ -88,6 +98,19 @@ namespace anvil
                       const MaterialResponse              &response,
                       const TangentDirections             &directions,
                       dealii::SymmetricTensor<2, 3>       *dsigma);
+
+  /**
+   * cauchy_tangent for the Green–Naghdi and logarithmic rates: δΔε and δΔR
+   * by central differences of the kinematics alone (step 1e-6 in F, error
+   * ~1e-10 relative, enough for quadratic Newton), chained exactly with the
+   * material's C_alg and S as above. The polar decomposition's and the log
+   * spin's eigen-derivatives are not worth their code for the gain.
+   */
+  void rate_cauchy_tangent(const IncrementalKinematics          &kin,
+                           const dealii::SymmetricTensor<2, 3> &stress_old,
+                           const MaterialResponse              &response,
+                           const TangentDirections             &directions,
+                           dealii::SymmetricTensor<2, 3>       *dsigma);
 
   /// Embed a dim x dim tensor in 3x3 (identity in the missing directions for F).
   template <int dim>

@@ -6,6 +6,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <anvil/material/material_point.h>
+#include <anvil/material/objective_rates.h>
 
 #include <array>
 #include <memory>
@@ -108,6 +109,7 @@ namespace anvil
 
     Control      control   = Control::strain;
     double       end_time  = 1;
+    ObjectiveRate objective_rate = ObjectiveRate::jaumann;
     unsigned int n_steps   = 1;
     bool         adiabatic = false;
     std::string  file;

@@ -37,9 +37,12 @@ namespace anvil
     class Formulation
     {
     public:
-      Formulation(const dealii::FiniteElement<dim> &fe, bool axisymmetric, bool f_bar);
+      Formulation(const dealii::FiniteElement<dim> &fe, bool axisymmetric, bool f_bar,
+                  ObjectiveRate objective_rate = ObjectiveRate::jaumann);
 
       const bool axisymmetric, f_bar;
+      /// Mechanics/Objective rate: how the kinematics rotate the stress.
+      const ObjectiveRate objective_rate;
       /// Only the in-plane block of F is active (plane strain: F₃₃ = 1).
       const bool plane_strain;
       /// F-bar exponent: F̄ = (J₀/J)^α F on the active block (α = 1/2 in
