@@ -54,7 +54,8 @@ namespace anvil
     , face_quadrature(parameters.polynomial_degree + 1)
   {
     formulation =
-      std::make_unique<const MechanicsAssembly::Formulation<dim>>(fe, axisymmetric, f_bar);
+      std::make_unique<const MechanicsAssembly::Formulation<dim>>(fe, axisymmetric, f_bar,
+                                                                  parameters.objective_rate);
     assembly_mapping = std::make_unique<MechanicsAssembly::AssemblyMapping<dim>>();
   }
 

@@ -28,6 +28,12 @@ namespace anvil
                       Patterns::Selection("plane strain|axisymmetric"),
                       "For Dimension = 2: plane strain, or axisymmetric about the y axis with x the "
                       "radius (x >= 0; hoop strain u_r/r; forces are per full ring, 2 pi r).");
+    prm.declare_entry("Objective rate", "Jaumann", Patterns::Selection(objective_rate_selection()),
+                      "Objective stress rate of the incremental update (all materials): Jaumann "
+                      "(the seed's eq. 9; shear stress oscillates past a shear of pi/2), "
+                      "Green-Naghdi (polar rotation, Dienes 1979) or logarithmic (log spin, Xiao, "
+                      "Bruhns & Meyers 1997: hypoelasticity integrates to Hencky's model; the "
+                      "choice for large shear). doc/mechanics.md, Objective rates.");
     prm.declare_entry("Temperature", "293", Patterns::Double(0),
                       "Uniform temperature in K of a scene without a temperature field: the "
                       "material laws are evaluated at it.");
@@ -95,6 +101,7 @@ namespace anvil
     f_bar             = prm.get("Element") == "F-bar";
     axisymmetric      = dim == 2 && prm.get("Two-dimensional model") == "axisymmetric";
     temperature       = prm.get_double("Temperature");
+    objective_rate    = objective_rate_from_string(prm.get("Objective rate"));
     if (!(temperature > 0))
       scene.fail("Mechanics/Temperature", "= " + std::to_string(temperature) +
                                             " K: expected an absolute temperature > 0 K");

@@ -16,6 +16,7 @@
 #include <anvil/core/named_values.h>
 #include <anvil/core/point_data.h>
 #include <anvil/material/material_point.h>
+#include <anvil/material/objective_rates.h>
 #include <anvil/mechanics/boundary_conditions.h>
 
 #include <array>
@@ -66,6 +67,7 @@ namespace anvil
       unsigned int polynomial_degree            = 1;
       bool         f_bar                        = true;
       bool         axisymmetric                 = false;
+      ObjectiveRate objective_rate              = ObjectiveRate::jaumann;
       bool         check_tangent                = false;
       bool         extrapolate                  = true;
       double       temperature                  = 293;
