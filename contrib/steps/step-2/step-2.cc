@@ -39,6 +39,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -294,7 +295,10 @@ namespace Step2
   // 1e-10 relative.
   bool check_material_point(const std::string &file)
   {
-    anvil::Scene scene(file, {});
+    // Relative output names belong to the driver file's directory (here the
+    // source tree): write the CSV and its summary to the working directory.
+    const std::string out = (std::filesystem::current_path() / "step-2-point.csv").string();
+    anvil::Scene      scene(file, {{"Output/File", out}});
     scene.read([](ParameterHandler &prm, const anvil::Scene &) {
       anvil::MaterialPointDriver::declare_parameters(prm);
     });
@@ -340,7 +344,10 @@ namespace Step2
   // exp(2 ε_lateral) = exp(−2νσ/E − ε̄).
   bool check_block(const std::string &file)
   {
-    anvil::Scene scene(file, {});
+    // Relative output names belong to the driver file's directory (here the
+    // source tree): write the CSV and its summary to the working directory.
+    const std::string out = (std::filesystem::current_path() / "step-2-point.csv").string();
+    anvil::Scene      scene(file, {{"Output/File", out}});
     scene.read_shape();
     scene.read([](ParameterHandler &prm, const anvil::Scene &scene) {
       anvil::Simulator<3>::declare_parameters(prm, scene.body_names(), scene.contact_pair_names(),
