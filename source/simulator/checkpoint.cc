@@ -5,7 +5,9 @@
 #include <anvil/core/named_values.h>
 #include <anvil/simulator/simulator.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -200,16 +202,28 @@ namespace anvil
     std::map<std::string, std::string> output_state;
     for (const auto &o : outputs)
       o->save(output_state);
+    // A failure (disk full, no permission) on process 0 must end every
+    // process at once, not leave the others in a barrier: the reason is
+    // broadcast, and the previous good checkpoint stays in place.
+    std::string failure;
     if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
-      {
-        write_state(dir + "/state.txt", t, dt, contact_state.str(), output_state);
-        std::filesystem::remove_all(final_dir + ".old");
-        if (std::filesystem::exists(final_dir))
-          std::filesystem::rename(final_dir, final_dir + ".old");
-        std::filesystem::rename(dir, final_dir);
-        std::filesystem::remove_all(final_dir + ".old");
-      }
-    MPI_Barrier(mpi_communicator);
+      try
+        {
+          write_state(dir + "/state.txt", t, dt, contact_state.str(), output_state);
+          std::filesystem::remove_all(final_dir + ".old");
+          if (std::filesystem::exists(final_dir))
+            std::filesystem::rename(final_dir, final_dir + ".old");
+          std::filesystem::rename(dir, final_dir);
+          std::filesystem::remove_all(final_dir + ".old");
+        }
+      catch (const std::exception &e)
+        {
+          failure = e.what();
+        }
+    failure = Utilities::MPI::broadcast(mpi_communicator, failure, 0);
+    if (!failure.empty())
+      throw SimulationError(failure + "; the previous checkpoint in " + final_dir +
+                            " is kept");
   }
 
   template <int dim>
@@ -217,6 +231,13 @@ namespace anvil
                                    const std::string                        &contact_state,
                                    const std::map<std::string, std::string> &output_state) const
   {
+    // ANVIL_CHECKPOINT_FAULT=full:N (tests only): the N-th checkpoint's state
+    // file is written to /dev/full, a real "no space left on device".
+    static unsigned int written = 0;
+    ++written;
+    const char *fault = std::getenv("ANVIL_CHECKPOINT_FAULT");
+    if (fault && std::string(fault) == "full:" + std::to_string(written))
+      std::filesystem::create_symlink("/dev/full", filename);
     std::ofstream out(filename);
     out << std::setprecision(17) << checkpoint_magic << ' ' << checkpoint_format << '\n';
     auto entry = [&](const std::string &key, const auto &value) {
@@ -260,7 +281,8 @@ namespace anvil
       out << "contact\n" << contact_state;
     out.flush();
     if (!out)
-      throw SimulationError("could not write the checkpoint " + filename + " (disk full?)");
+      throw SimulationError("could not write the checkpoint " + filename + ": " +
+                            std::strerror(errno));
   }
 
   template <int dim>

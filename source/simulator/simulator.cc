@@ -338,7 +338,18 @@ namespace anvil
         const bool last = t >= time.end_time - eps;
         output_step(&r, t, last);
         if (last || (checkpoint_interval > 0 && statistics.steps % checkpoint_interval == 0))
-          write_checkpoint(t, dt);
+          try
+            {
+              write_checkpoint(t, dt);
+            }
+          catch (const SimulationError &e)
+            {
+              // The histories are complete up to t: close them and say why.
+              for (auto &o : outputs)
+                o->finish(state(t, statistics.steps), true);
+              write_summary(std::string("stopped: ") + e.what());
+              throw;
+            }
         if (!quiet)
           print_step(r, t, step);
         dt = scheme->easy(r, time.easy_iterations) ?
@@ -388,7 +399,15 @@ namespace anvil
         o->finish(state(t, statistics.steps), true);
     }
     // Resume with the step of the last accepted one, not the cut one.
-    write_checkpoint(t, last_accepted_step);
+    try
+      {
+        write_checkpoint(t, last_accepted_step);
+      }
+    catch (const SimulationError &e)
+      {
+        write_summary(status + "; " + e.what());
+        throw SimulationError(status + "; " + e.what());
+      }
     write_summary(status);
     failure_reason =
       status + " (last converged state and a checkpoint written to " + output_dir + ")";

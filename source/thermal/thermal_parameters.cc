@@ -1,0 +1,211 @@
+// The heat problem's input: its material block, its boundary conditions and
+// its time integration entries, each checked against the scene before any work.
+#include <anvil/core/expression.h>
+#include <anvil/core/input_error.h>
+#include <anvil/core/instantiate.h>
+#include <anvil/core/scene.h>
+#include <anvil/geometry/geometry.h>
+#include <anvil/thermal/thermal_problem.h>
+
+#include <cmath>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  // ---------------------------------------------------------------- material
+
+  void ThermalMaterial::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Thermal");
+    prm.declare_entry("Conductivity", "50", Patterns::Double(0),
+                      "Thermal conductivity k0 at the reference temperature, N/(s K) = mW/(mm K) "
+                      "(= W/(m K)); steel about 50.");
+    prm.declare_entry("Conductivity temperature coefficient", "0", Patterns::Double(),
+                      "a in k(T) = k0 (1 + a (T - Reference temperature)), 1/K; 0: constant k.");
+    prm.declare_entry("Reference temperature", "293", Patterns::Double(0),
+                      "T_ref of the conductivity law, K.");
+    prm.leave_subsection();
+  }
+
+  ThermalMaterial ThermalMaterial::parse_parameters(ParameterHandler &prm, const Scene &scene,
+                                                    const std::string &path, const double density,
+                                                    const double heat_capacity)
+  {
+    ThermalMaterial m;
+    m.density       = density;
+    m.heat_capacity = heat_capacity;
+    prm.enter_subsection("Thermal");
+    m.conductivity          = prm.get_double("Conductivity");
+    m.conductivity_slope    = prm.get_double("Conductivity temperature coefficient");
+    m.reference_temperature = prm.get_double("Reference temperature");
+    prm.leave_subsection();
+    if (!(m.reference_temperature > 0))
+      scene.fail(path + "/Thermal/Reference temperature",
+                 "= " + std::to_string(m.reference_temperature) +
+                   " K: expected an absolute temperature > 0 K");
+    if (!(density > 0) || !(heat_capacity > 0))
+      scene.fail(path, "has density " + std::to_string(density) + " and heat capacity " +
+                         std::to_string(heat_capacity) + ": both must be > 0 for a temperature field");
+    return m;
+  }
+
+  // ------------------------------------------------------ boundary conditions
+
+  template <int dim>
+  void ThermalBoundaryConditions<dim>::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Boundary conditions");
+    prm.declare_entry("Temperature", "", Patterns::Anything(),
+                      "Prescribed temperature: 'boundary: expr; ...' in K, expressions in x, y(, z), t.");
+    prm.declare_entry("Flux", "", Patterns::Anything(),
+                      "Heat flux into the body: 'boundary: expr; ...' in mW/mm^2 (= N/(mm s)).");
+    prm.declare_entry("Convection", "", Patterns::Anything(),
+                      "q = h (T_inf - T): 'boundary: h, T_inf; ...', h in mW/(mm^2 K), T_inf in K.");
+    prm.declare_entry("Radiation", "", Patterns::Anything(),
+                      "q = emissivity sigma (T_inf^4 - T^4), sigma = 5.670374e-11 mW/(mm^2 K^4): "
+                      "'boundary: emissivity, T_inf; ...'.");
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  void ThermalBoundaryConditions<dim>::parse_parameters(ParameterHandler &prm, const Scene &scene,
+                                                        const Geometry<dim> &geometry)
+  {
+    boundaries.clear();
+    prm.enter_subsection("Heat");
+    prm.enter_subsection("Boundary conditions");
+    const std::vector<std::pair<std::string, unsigned int>> kinds = {
+      {"Temperature", 1}, {"Flux", 1}, {"Convection", 2}, {"Radiation", 2}};
+    std::map<std::string, std::string> texts;
+    for (const auto &k : kinds)
+      texts[k.first] = prm.get(k.first);
+    prm.leave_subsection();
+    prm.leave_subsection();
+
+    for (const auto &[kind, n_values] : kinds)
+      {
+        const std::string path = "Heat/Boundary conditions/" + kind;
+        const std::string form = n_values == 1 ? "'boundary: expr'" :
+                                 kind == "Convection" ? "'boundary: h, T_inf'" :
+                                                        "'boundary: emissivity, T_inf'";
+        for (const auto &item : split_outside_parentheses(texts[kind], ';'))
+          {
+            if (item.empty())
+              continue;
+            const auto colon = item.find(':');
+            if (colon == std::string::npos || trim(item.substr(0, colon)).empty())
+              scene.fail(path, "has '" + item + "' without a boundary name: expected " + form);
+            const std::string name = trim(item.substr(0, colon));
+            const auto id = geometry.boundary_id(name, scene.where(path) + ": '" + path + "'");
+            const auto values = split_outside_parentheses(item.substr(colon + 1), ',');
+            if (values.size() != n_values || values[0].empty())
+              scene.fail(path, "has '" + item + "': expected " + form);
+            Boundary &b = boundaries[id];
+            b.name      = name;
+            auto parse  = [&](const std::string &text) { return parse_expression<dim>(text, scene, path); };
+            auto &slot  = kind == "Temperature" ? b.temperature :
+                          kind == "Flux"        ? b.flux :
+                          kind == "Convection"  ? b.h : b.emissivity;
+            if (slot)
+              scene.fail(path, "names the boundary '" + name + "' twice");
+            slot = parse(values[0]);
+            if (kind == "Convection")
+              b.T_convection = parse(values[1]);
+            if (kind == "Radiation")
+              b.T_radiation = parse(values[1]);
+            if (b.temperature && (b.flux || b.h || b.emissivity))
+              scene.fail(path, "gives the boundary '" + name +
+                                 "' a Temperature and a flux, convection or radiation: a prescribed "
+                                 "temperature takes nothing else");
+          }
+      }
+  }
+
+  // -------------------------------------------------------------- parameters
+
+  template <int dim>
+  void ThermalProblem<dim>::Parameters::declare_parameters(ParameterHandler &prm)
+  {
+    prm.enter_subsection("Heat");
+    prm.declare_entry("Initial temperature", "293", Patterns::Anything(),
+                      "T(x, 0) in K: an expression in x, y(, z) (t = start time).");
+    prm.declare_entry("Polynomial degree", "1", Patterns::Integer(1, 2),
+                      "Degree of the temperature elements: 1 (Q1) or 2 (Q2). Heat sources from the "
+                      "mechanics are given at the points of QGauss(degree + 1): use the mechanics' degree.");
+    prm.declare_entry("Source", "", Patterns::Anything(),
+                      "Volumetric heat source r in mW/mm^3 (= MPa/s), an expression in x, y(, z), t; "
+                      "empty: none (the mechanics' dissipation is added separately).");
+    prm.enter_subsection("Time integration");
+    prm.declare_entry("Method", "DIRK order 3",
+                      Patterns::Selection("backward Euler|DIRK order 2|DIRK order 3|DIRK order 4|DIRK order 5"),
+                      "ARKode's implicit diagonally implicit Runge-Kutta method of that order "
+                      "(SUNDIALS' default table: SDIRK-2-1-2, ARK324L2SA-DIRK-4-2-3, SDIRK-5-3-4, "
+                      "ARK548L2SA-DIRK-8-4-5); backward Euler (one stage, no error estimate: "
+                      "needs a Fixed step size) is the method of Physics/Coupling = monolithic, "
+                      "for comparisons with it.");
+    prm.declare_entry("Relative tolerance", "1e-6", Patterns::Double(0),
+                      "ARKode's relative local error tolerance (dimensionless).");
+    prm.declare_entry("Absolute tolerance", "1e-6", Patterns::Double(0),
+                      "ARKode's absolute local error tolerance, K.");
+    prm.declare_entry("Fixed step size", "0", Patterns::Double(0),
+                      "Internal step of ARKode in s (rounded down to divide each mechanical step); "
+                      "0: adaptive steps from the tolerances.");
+    prm.declare_entry("Maximum internal steps", "5000", Patterns::Integer(1),
+                      "ARKode steps per mechanical time step before it gives up (the step is cut back).");
+    prm.declare_entry("Maximum nonlinear iterations", "10", Patterns::Integer(1),
+                      "Newton iterations per stage before ARKode retries with a smaller step.");
+    prm.leave_subsection();
+    prm.enter_subsection("Linear solver");
+    prm.declare_entry("Type", "automatic", Patterns::Selection("automatic|direct|iterative"),
+                      "Newton matrix M + gamma K: direct (Amesos KLU), iterative (GMRES with AMG), "
+                      "automatic: direct below 'Direct solver limit' DoFs.");
+    prm.declare_entry("Mass matrix", "consistent", Patterns::Selection("consistent|lumped"),
+                      "consistent (solved by CG + Jacobi) or lumped (row sums: a diagonal "
+                      "mass, cheaper, first-order accurate in space for the capacity).");
+    prm.declare_entry("Direct solver limit", "100000", Patterns::Integer(0),
+                      "Number of DoFs up to which 'automatic' chooses the direct solver.");
+    prm.leave_subsection();
+    ThermalBoundaryConditions<dim>::declare_parameters(prm);
+    prm.leave_subsection();
+  }
+
+  template <int dim>
+  void ThermalProblem<dim>::Parameters::parse_parameters(ParameterHandler &prm, const Scene &scene)
+  {
+    prm.enter_subsection("Heat");
+    initial_temperature = prm.get("Initial temperature");
+    initial_temperature_location = scene.where("Heat/Initial temperature");
+    polynomial_degree   = prm.get_integer("Polynomial degree");
+    source              = trim(prm.get("Source"));
+    prm.enter_subsection("Time integration");
+    order = prm.get("Method") == "backward Euler" ? 1 : prm.get("Method").back() - '0';
+    relative_tolerance       = prm.get_double("Relative tolerance");
+    absolute_tolerance       = prm.get_double("Absolute tolerance");
+    fixed_step_size          = prm.get_double("Fixed step size");
+    max_internal_steps       = prm.get_integer("Maximum internal steps");
+    max_nonlinear_iterations = prm.get_integer("Maximum nonlinear iterations");
+    prm.leave_subsection();
+    prm.enter_subsection("Linear solver");
+    linear_solver       = prm.get("Type");
+    lumped_mass         = prm.get("Mass matrix") == "lumped";
+    direct_solver_limit = prm.get_integer("Direct solver limit");
+    prm.leave_subsection();
+    prm.leave_subsection();
+    parse_expression<dim>(initial_temperature, scene, "Heat/Initial temperature");
+    if (!source.empty())
+      parse_expression<dim>(source, scene, "Heat/Source");
+    if (order == 1 && !(fixed_step_size > 0))
+      scene.fail("Heat/Time integration/Method",
+                 "is backward Euler, which has no error estimate: give a Fixed step size > 0 "
+                 "(larger than the time step: one step per mechanical step)");
+    if (!(relative_tolerance > 0) && !(absolute_tolerance > 0))
+      scene.fail("Heat/Time integration/Relative tolerance",
+                 "and the absolute tolerance are both 0: at least one must be > 0");
+  }
+
+  ANVIL_INSTANTIATE_CLASS(ThermalBoundaryConditions)
+#define ANVIL_INSTANTIATE_PARAMETERS(dim) template struct ThermalProblem<dim>::Parameters;
+  ANVIL_INSTANTIATE(ANVIL_INSTANTIATE_PARAMETERS)
+#undef ANVIL_INSTANTIATE_PARAMETERS
+} // namespace anvil
