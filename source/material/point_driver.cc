@@ -504,8 +504,7 @@ namespace anvil
     Tensor<2, 3>          F_old = F_at(0.);
     IncrementalKinematics kinematics;
 
-    // What the summary reports, also of a run that stops early.
-    Final      done;
+    Final      done; // what the summary reports, also of a run that stops early
     const auto record = [&](const unsigned int k, const double t) {
       done.steps       = k;
       done.time        = t;
