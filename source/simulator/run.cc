@@ -341,7 +341,7 @@ namespace anvil
         const auto        end  = mid == std::string::npos ? mid : what.find('>', mid + 13);
         if (end != std::string::npos)
           return end_with("anvil: error: ",
-                          filename + ": " + what.substr(mid + 13, end - mid - 13) + " = " +
+                          filename + ": '" + what.substr(mid + 13, end - mid - 13) + "' = " +
                             what.substr(at + tag.size(), mid - at - tag.size()) +
                             ": not representable as a double (too small or too large); expected "
                             "a normal floating-point number",
