@@ -68,7 +68,7 @@ expect "contact: Two-pass with a tool" "--set: 'Contact/sliding/Two-pass' is tru
 # Registered parts: an unknown name lists what is registered.
 n="$src/prm/necking_bar.prm"
 expect "unknown material model" "--set 'Bodies/body/Material/Model=J3'.*hypoelastic.*J2.*Perzyna" "$anvil" "$n" --set "Bodies/body/Material/Model=J3"
-expect "unknown hardening law" "--set 'Bodies/body/Material/Hardening/Model=ludwik'.*Selection [a-z |]*voce[a-z |]*\]" "$anvil" "$n" --set "Bodies/body/Material/Hardening/Model=ludwik"
+expect "unknown hardening law" "--set 'Bodies/body/Material/Hardening/Model=ludwik'.*Selection [a-z |-]*voce[a-z |-]*\]" "$anvil" "$n" --set "Bodies/body/Material/Hardening/Model=ludwik"
 expect "unknown softening law" "--set 'Bodies/body/Material/Hardening/Thermal softening/Model=arrhenius'.*johnson-cook.*linear.*none.*table" "$anvil" "$n" --set "Bodies/body/Material/Hardening/Thermal softening/Model=arrhenius"
 expect "unknown tool shape" "--set 'Contact/floor/Type=cone'.*arc.circle.plane.polyline.cylinder.sphere" "$anvil" "$c" --set "Contact/floor/Type=cone"
 # Temperature-dependent data (issue 13): tables and every tabulated value checked.

@@ -115,10 +115,18 @@ for (nl, nu, two_pass), r in results.items():
     if not two_pass:
         check(r["Fy_err"] <= 1e-9, "%s: vertical contact force on the upper block = p w at every step "
               "(max error %.2e p w)" % (what, r["Fy_err"]))
-    # The quantities of interest max/min(stress_yy) are over both bodies: the
-    # extremes of the per-body probes (probes.csv has 12 significant digits).
-    close(q["syy_max"], max(r["l_max"], r["u_max"]), 1e-10, "%s: max(stress_yy) = max of the cell probes" % what)
-    close(q["syy_min"], min(r["l_min"], r["u_min"]), 1e-10, "%s: min(stress_yy) = min of the cell probes" % what)
+    # The quantities of interest max/min(stress_yy) are over both bodies and
+    # over the quadrature points (issue 16): the cell probes (cell averages,
+    # 12 significant digits in probes.csv) lie inside their range, and where
+    # the patch is passed exactly (uniform stress) they are equal.
+    hi, lo = max(r["l_max"], r["u_max"]), min(r["l_min"], r["u_min"])
+    if r["err"] < 1e-9:
+        close(q["syy_max"], hi, 1e-10, "%s: max(stress_yy) over the points = max of the cell probes (uniform)" % what)
+        close(q["syy_min"], lo, 1e-10, "%s: min(stress_yy) over the points = min of the cell probes (uniform)" % what)
+    else:
+        check(q["syy_max"] >= hi - 1e-10 * p and q["syy_min"] <= lo + 1e-10 * p,
+              "%s: max/min(stress_yy) over the points %.6g / %.6g enclose the cell probes' %.6g / %.6g"
+              % (what, q["syy_max"], q["syy_min"], hi, lo))
     # The volume means follow from equilibrium (virtual work with a linear test
     # field) up to the strain level (reference volume weights, ~ 1e-4) even
     # where the pointwise stresses are wrong.

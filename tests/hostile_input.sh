@@ -98,7 +98,7 @@ expect "Transformation inverting cells" "'Geometry/Transformation' makes a mesh 
 # Materials and temperatures.
 expect "Young's modulus 1e308" "'$M/Elasticity/Young's modulus' = 1e\+308 MPa gives the P-wave modulus" \
   "$anvil" "$P/necking_bar.prm" --check "${o[@]}" --set "$M/Elasticity/Young's modulus=1e308"
-expect "subnormal Poisson's ratio 1e-308" "Poisson's ratio = 1e-308: not representable as a double" \
+expect "subnormal Poisson's ratio 1e-308" "'Poisson's ratio' = 1e-308: not representable as a double" \
   "$anvil" "$P/necking_bar.prm" --check "${o[@]}" --set "$M/Elasticity/Poisson's ratio=1e-308"
 expect "reference temperature 0 K" "'$M/Elasticity/Reference temperature' = 0 K: expected an absolute temperature > 0 K" \
   "$anvil" "$P/necking_bar_thermal.prm" --check "${o[@]}" --set "$M/Elasticity/Reference temperature=0"

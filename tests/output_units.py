@@ -71,8 +71,8 @@ close(q["T_max"], 393.0, 1e-12, "max(temperature) over the nodes = the Dirichlet
 p = read_csv(out + "/probes.csv")
 close(q["dT12"], p["p1_temperature"][-1] - p["p2_temperature"][-1], 1e-10,
       "probe(p1) - probe(p2) = difference of the probes.csv columns")
-check(s["units"]["T_max"] == "K" and re.search(r"^  T_max = 393 K$", stdout, re.M) is not None,
-      "temperature results in K")
+check(s["units"]["T_max"] == "K" and re.search(r"^  T_max = 393 K  \(max\(temperature\) over nodal values\)$", stdout, re.M) is not None,
+      "temperature results in K, and the printout says what the extremum runs over")
 with open(out + "/thermal.csv") as f:
     check("time_step [s]" in f.readline(), "thermal.csv: time_step [s]")
 

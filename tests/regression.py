@@ -75,8 +75,11 @@ CASES = {
                          note="case 3 shortened to the first peak (0.15 ms, 12 steps; the full crush is ~40 s)"),
     "quarter_cylinder_forming": scene("prm/quarter_cylinder_forming.prm", ["Time/End time=10"],
                                       note="shortened to the first 10 s of the ramp (the sheet swings onto the die and wraps its first half; full run ~7 s CPU)"),
+    "taylor_bar": scene("prm/taylor_bar.prm", ["Time/End time=1.2e-5"],
+                        note="shortened to the first 12 us (30 steps) of the 80 us impact"),
     # Material-point driver files.
     "mp_j2_cyclic": point("prm/material_point/j2_cyclic.prm"),
+    "mp_johnson_cook": point("prm/material_point/johnson_cook.prm"),
     "mp_simple_shear": point("prm/material_point/simple_shear.prm"),
     "mp_stretch_rotate": point("prm/material_point/stretch_rotate.prm"),
     "mp_uniaxial_stress": point("prm/material_point/uniaxial_stress.prm"),

@@ -17,6 +17,8 @@
 // increment 345 -> 350 K and the dsigma/dT check (293 -> 400 K) cross them,
 // so the trapezoidal thermal strain and every T-derivative are exercised on
 // both sides of a kink (the central differences stay inside one segment).
+// Johnson-Cook (issue 16): the hardening law A + B eps^n and the model with
+// its multiplicative rate factor (1 + C ln(eps_dot/eps_dot_0)).
 // Prints analytic and finite-difference values and fails above 1e-6 relative.
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/symmetric_tensor.h>
@@ -176,6 +178,22 @@ int main()
        " set Reference strain = 0.01\n set Hardening exponent = 0.2\n"
        " subsection Thermal softening\n set Model = johnson-cook\n set Melting temperature = 1700\n"
        " set Exponent = 1.1\n set Reference temperature = 293\n end\nend\n",
+     1},
+    {"J2 johnson-cook hardening A + B eps^n, Johnson-Cook softening",
+     "set Model = J2\n" + elastic +
+       "subsection Hardening\n set Model = johnson-cook\n set Initial yield stress = 300\n"
+       " set Strength coefficient = 292\n set Hardening exponent = 0.31\n"
+       " subsection Thermal softening\n set Model = johnson-cook\n set Melting temperature = 1356\n"
+       " set Exponent = 1.09\n set Reference temperature = 293\n end\nend\n",
+     1},
+    // The rate factor is active: Δε̄/Δt ~ 2/s in the plastic branch, 20 x ε̇₀. A = 300 MPa
+    // keeps the small stretch elastic: just past yield from ε̄ = 0, B ε̄^0.31 is too
+    // curved for central differences of step 1e-6 (the plastic branch checks the tangent).
+    {"Johnson-Cook model, multiplicative rate factor",
+     "set Model = Johnson-Cook\n" + elastic +
+       "subsection Johnson-Cook\n set A = 300\n set B = 292\n set n = 0.31\n set C = 0.025\n"
+       " set Reference strain rate = 0.1\n set m = 1.09\n set Melting temperature = 1356\n"
+       " set Transition temperature = 293\nend\n",
      1},
     {"Perzyna, T-dependent eta, n, m",
      "set Model = Perzyna\n" + elastic +

@@ -176,13 +176,15 @@ namespace anvil
                                HardeningLaw::Value       &Y,
                                PerzynaLaw::Value         &V) const
     {
-      const HardeningLaw &hardening = *model.hardening;
-      const PerzynaLaw   &viscosity = model.viscosity;
+      const HardeningLaw    &hardening = *model.hardening;
+      const PerzynaLaw      &viscosity = model.viscosity;
+      const JohnsonCookRate &jc        = model.johnson_cook_rate;
       // r and rx = Δε̄ r'(Δε̄) = dr/d ln Δε̄ (finite where r' is not: V ∝ Δε̄^{1/m}),
       // with σᵥ and V at Δε̄ in y and v.
       auto residual = [&](const double dp, double &rx, HardeningLaw::Value &y, PerzynaLaw::Value &v) {
         y  = hardening.evaluate(eps_n + dp, T);
-        v  = viscosity.evaluate(rate, eps_n + dp, dp);
+        v  = jc.active() ? jc.evaluate(y.stress, y.slope, dp, rate.dt) :
+                           viscosity.evaluate(rate, eps_n + dp, dp);
         rx = -(3 * G + y.slope) * dp - v.log_derivative;
         return q_tr - 3 * G * dp - y.stress - v.stress;
       };
@@ -235,7 +237,8 @@ namespace anvil
           // bracket wins. Where Newton leaves the bracket, Newton in x (on g, or
           // on r if A ≤ 0); then bisection in x.
           const double A      = r + V.stress;
-          const bool   loglog = A > 0 && V.stress > 0;
+          // (Not for Johnson-Cook: its V is logarithmic, not a power of Δε̄.)
+          const bool   loglog = A > 0 && V.stress > 0 && !jc.active();
           auto         newton_x = [&]() {
             return loglog ? dp * std::exp(-std::log(A / V.stress) /
                                           ((rx + V.log_derivative) / A - V.log_derivative / V.stress)) :
@@ -392,7 +395,8 @@ namespace anvil
           if (q_trial > Y.stress)
             {
               rate = model.viscosity.at(T, inc.time_step);
-              if (model.hardening->is_linear() && !rate.active())
+              if (model.hardening->is_linear() && !rate.active() &&
+                  !model.johnson_cook_rate.active())
                 {
                   // Linear hardening, rate-independent: r is linear in Δε̄.
                   const double h = Y_start.slope;
@@ -473,8 +477,11 @@ namespace anvil
           SymmetricTensor<2, 3> ds = dtrial;
           if (dp > 0)
             {
+              // Johnson-Cook: V = σ_h C ln(ε̄̇/ε̇₀), so ∂V/∂T = (V/σ_h) ∂σ_h/∂T.
               V.temperature_derivative =
-                model.viscosity.temperature_derivative(rate, T, eps_c, dp, V.stress);
+                model.johnson_cook_rate.active() ?
+                  (Y.stress > 0 ? V.stress / Y.stress * Y.temperature_derivative : 0.) :
+                  model.viscosity.temperature_derivative(rate, T, eps_c, dp, V.stress);
               const double dG  = g * G;
               const double dq  = std::sqrt(1.5) * (n_t * dtrial);
               const double ddp = (dq - 3 * dG * dp - Y.temperature_derivative -

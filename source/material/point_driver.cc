@@ -9,7 +9,10 @@
 #include <anvil/material/kinematics.h>
 #include <anvil/core/csv_history.h>
 
+#include "dense_solve.h"
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -92,44 +95,6 @@ namespace anvil
       return -1;
     }
 
-    /// A small dense solve with partial pivoting: A x = b, b overwritten by x.
-    /// Returns false if A is singular (relative to its largest entry).
-    bool solve(std::vector<std::vector<double>> A, std::vector<double> &b)
-    {
-      const unsigned int n     = b.size();
-      double             scale = 0;
-      for (const auto &row : A)
-        for (const double a : row)
-          scale = std::max(scale, std::abs(a));
-      if (!(scale > 0) || !std::isfinite(scale))
-        return false;
-      for (unsigned int k = 0; k < n; ++k)
-        {
-          unsigned int p = k;
-          for (unsigned int i = k + 1; i < n; ++i)
-            if (std::abs(A[i][k]) > std::abs(A[p][k]))
-              p = i;
-          if (std::abs(A[p][k]) <= 1e-14 * scale)
-            return false;
-          std::swap(A[k], A[p]);
-          std::swap(b[k], b[p]);
-          for (unsigned int i = k + 1; i < n; ++i)
-            {
-              const double m = A[i][k] / A[k][k];
-              for (unsigned int j = k; j < n; ++j)
-                A[i][j] -= m * A[k][j];
-              b[i] -= m * b[k];
-            }
-        }
-      for (unsigned int k = n; k-- > 0;)
-        {
-          for (unsigned int j = k + 1; j < n; ++j)
-            b[k] -= A[k][j] * b[j];
-          b[k] /= A[k][k];
-        }
-      return true;
-    }
-
     const MaterialRequest all_requests = request_stress | request_tangent |
                                          request_temperature_derivative | request_dissipation;
     constexpr unsigned int max_local_iterations = 50;
@@ -183,12 +148,18 @@ namespace anvil
 
     prm.enter_subsection("Output");
     prm.declare_entry("File", "point.csv", Patterns::FileName(Patterns::FileName::output),
-                      "The CSV history, one row per step (and one for t = 0), relative to "
-                      "the current directory: step, time (s), temperature (K), strain "
+                      "The CSV history, one row per step (and one for t = 0); a relative name "
+                      "is relative to the directory of the .prm file (also when given with "
+                      "--set), not the working directory: step, time (s), temperature (K), strain "
                       "exx..exz, Cauchy stress sxx..sxz, von_mises, pressure (MPa), "
                       "equivalent_plastic_strain, plastic_work_rate, "
                       "plastic_dissipation_rate, thermoelastic_heating_rate (MPa/s), "
                       "return_iterations, local_iterations.");
+    prm.declare_entry("Summary", "", Patterns::FileName(Patterns::FileName::output),
+                      "The run's summary (JSON: model, path, final stress, strain, plastic "
+                      "strain and temperature with their units, iterations, wall time); "
+                      "relative to the .prm file's directory; empty: the CSV's name with "
+                      ".summary.json for .csv (point.csv -> point.summary.json).");
     prm.leave_subsection();
   }
 
@@ -237,7 +208,8 @@ namespace anvil
     prm.leave_subsection();
 
     prm.enter_subsection("Output");
-    file = prm.get("File");
+    file    = trim(prm.get("File"));
+    summary = trim(prm.get("Summary"));
     prm.leave_subsection();
 
     if (!(end_time > 0))
@@ -245,8 +217,23 @@ namespace anvil
     if (steps < 1)
       scene.fail(path_steps, "= " + std::to_string(steps) + ": expected at least 1 step");
     n_steps = steps;
-    if (trim(file).empty())
+    if (file.empty())
       scene.fail(path_file, "is empty: expected a file name such as point.csv");
+    // Relative names belong to the .prm file, wherever anvil is started from
+    // (as a scene's mesh files do): the working directory is an accident.
+    const auto beside_prm = [&](const std::string &name) {
+      const std::filesystem::path p(name);
+      if (p.is_absolute() || scene.filename().empty())
+        return name;
+      return (std::filesystem::path(scene.filename()).parent_path() / p).lexically_normal().string();
+    };
+    if (summary.empty())
+      {
+        std::filesystem::path p(file);
+        summary = (p.extension() == ".csv" ? p.replace_extension("") : p).string() + ".summary.json";
+      }
+    file    = beside_prm(file);
+    summary = beside_prm(summary);
 
     temperature = parse(temperature_text, path_temperature, "");
     if (control == Control::strain)
@@ -439,7 +426,7 @@ namespace anvil
             for (unsigned int i = 0; i < n; ++i)
               A[i][j] = component(column, free[i]);
           }
-        if (!solve(A, r))
+        if (!point_driver::solve(A, r))
           {
             std::string names;
             for (const unsigned int c : free)
@@ -456,14 +443,16 @@ namespace anvil
 
   void MaterialPointDriver::run(const bool write, std::ostream *log)
   {
+    const auto start = std::chrono::steady_clock::now();
     CsvHistory csv;
     if (write)
-      {
-        const std::filesystem::path parent = std::filesystem::path(file).parent_path();
-        std::error_code             ignored;
-        if (!parent.empty())
-          std::filesystem::create_directories(parent, ignored);
-      }
+      for (const auto &name : {file, summary})
+        {
+          const std::filesystem::path parent = std::filesystem::path(name).parent_path();
+          std::error_code             ignored;
+          if (!parent.empty())
+            std::filesystem::create_directories(parent, ignored);
+        }
     // Each header carries its unit ("sxx [MPa]"); readers match the name before " [".
     std::vector<std::string> columns = {"step", "time [s]", "temperature [K]"};
     for (const auto *name : strain_names)
@@ -519,6 +508,20 @@ namespace anvil
     Tensor<2, 3>          F_old = F_at(0.);
     IncrementalKinematics kinematics;
 
+    Final      done; // what the summary reports, also of a run that stops early
+    const auto record = [&](const unsigned int k, const double t) {
+      done.steps       = k;
+      done.time        = t;
+      done.temperature = T;
+      done.strain      = strain;
+      done.response    = response;
+      done.max_return  = max_return;
+      done.max_local   = max_local;
+      done.wall_time =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    record(0, 0.);
+
     const double dt = end_time / n_steps;
     for (unsigned int k = 1; k <= n_steps; ++k)
       {
@@ -557,8 +560,17 @@ namespace anvil
           }
         catch (const MaterialPointError &e)
           {
-            throw SimulationError("material point, step " + std::to_string(k) + " (t = " +
-                                  number(t) + " s): " + e.what());
+            const SimulationError error("material point, step " + std::to_string(k) +
+                                        " (t = " + number(t) + " s): " + e.what());
+            if (write)
+              write_summary(done, std::string("failed: ") + error.what());
+            throw error;
+          }
+        catch (const SimulationError &e)
+          {
+            if (write)
+              write_summary(done, std::string("failed: ") + e.what());
+            throw;
           }
         point->commit();
 
@@ -568,7 +580,10 @@ namespace anvil
         max_return = std::max(max_return, response.return_iterations);
         max_local  = std::max(max_local, local);
         add_row(k, t, local);
+        record(k, t);
       }
+    if (write)
+      write_summary(done, "completed");
 
     if (log)
       {
@@ -582,7 +597,7 @@ namespace anvil
              << max_local << "; final stress (MPa)";
         for (unsigned int c = 0; c < 6; ++c)
           line << (c ? ", " : " ") << stress_names[c] << " = " << component(s, c);
-        line << ", T = " << T << " K; history in " << file;
+        line << ", T = " << T << " K; history in " << file << ", summary in " << summary;
         *log << line.str() << std::endl;
       }
   }

@@ -297,6 +297,7 @@ namespace anvil
         f.names.push_back(std::string("stress_") + axes[i] + axes[j]);
     f.names.insert(f.names.end(), {"von_mises", "pressure", "J", "equivalent_plastic_strain", "body"});
     f.values.assign(f.names.size(), Vector<double>(triangulation.n_active_cells()));
+    f.max_values = f.min_values = f.values;
 
     FEValues<dim> fe_values(mapping, fe, quadrature,
                             update_gradients | update_values | update_quadrature_points);
@@ -312,6 +313,7 @@ namespace anvil
           fe_values[displacements].get_function_values(solution, u_values);
           SymmetricTensor<2, 3> s;
           double J = 0, eqps = 0;
+          const unsigned int c = cell->active_cell_index();
           for (unsigned int q = 0; q < n_q; ++q)
             {
               const auto &p = *points(cell, q);
@@ -319,9 +321,25 @@ namespace anvil
               eqps += p.equivalent_plastic_strain() / n_q;
               const double R  = axisymmetric ? fe_values.quadrature_point(q)[0] : 1.;
               const double ur = axisymmetric ? u_values[q][0] : 0.;
-              J += determinant(deformation_gradient(grad_u[q], ur, R)) / n_q;
+              const double Jq = determinant(deformation_gradient(grad_u[q], ur, R));
+              J += Jq / n_q;
+              // The point's own values, in the order of the names (body aside).
+              const auto   dev_q = deviator(p.stress());
+              double       at_q[10];
+              unsigned int k = 0;
+              for (unsigned int i = 0; i < 3; ++i)
+                for (unsigned int j = i; j < 3; ++j)
+                  at_q[k++] = p.stress()[i][j];
+              at_q[k++] = std::sqrt(1.5 * (dev_q * dev_q));
+              at_q[k++] = -trace(p.stress()) / 3.;
+              at_q[k++] = Jq;
+              at_q[k++] = p.equivalent_plastic_strain();
+              for (unsigned int i = 0; i < k; ++i)
+                {
+                  f.max_values[i][c] = q == 0 ? at_q[i] : std::max(f.max_values[i][c], at_q[i]);
+                  f.min_values[i][c] = q == 0 ? at_q[i] : std::min(f.min_values[i][c], at_q[i]);
+                }
             }
-          const unsigned int c = cell->active_cell_index();
           unsigned int       k = 0;
           for (unsigned int i = 0; i < 3; ++i)
             for (unsigned int j = i; j < 3; ++j)
@@ -331,7 +349,7 @@ namespace anvil
           f.values[k++][c] = -trace(s) / 3.;
           f.values[k++][c] = J;
           f.values[k++][c] = eqps;
-          f.values[k++][c] = cell->material_id();
+          f.values[k][c] = f.max_values[k][c] = f.min_values[k][c] = cell->material_id();
         }
     return f;
   }

@@ -105,8 +105,10 @@ namespace anvil
         "uy)'); <field> is stress_xx..stress_zz, von_mises, pressure [MPa], J, "
         "equivalent_plastic_strain, temperature [K] (heat scenes). max and min of the "
         "temperature of a heat equation run over its nodal values (the extremes of the Q1 "
-        "field); of the other fields, and of a prescribed temperature, over cell averages "
-        "(mean over each cell's quadrature points), as the VTU's cell fields. Each result is "
+        "field); of the mechanical fields over the quadrature points (the material points "
+        "themselves, not the cell averages of the VTU, which lie inside their range); of a "
+        "prescribed temperature over cell averages. mean is the volume mean of cell "
+        "averages. Each result is "
         "printed and written to summary.json with its unit (summary.json: units).");
     }
 
@@ -120,7 +122,10 @@ namespace anvil
       // Beside, not inside: readers of quantities_of_interest keep their numbers.
       for (const auto &e : expressions)
         summary.set("units", e.name, e.unit);
+      for (const auto &[name, note] : extrema)
+        summary.set("quantities_of_interest_extrema", name, note);
     }
+    std::vector<std::pair<std::string, std::string>> notes() const override { return extrema; }
     std::vector<std::pair<std::string, std::string>> units() const override
     {
       std::vector<std::pair<std::string, std::string>> u;
@@ -157,6 +162,7 @@ namespace anvil
     std::vector<ProbePoint<dim>>                probes;
     std::vector<Expression>                     expressions;
     std::vector<std::pair<std::string, double>> values;
+    std::vector<std::pair<std::string, std::string>> extrema; // name -> what its max/min run over
   };
 
   template <int dim>
@@ -317,6 +323,7 @@ namespace anvil
     // After a failure the state is the last converged one, not the scene's end:
     // its quantities would be mistaken for results.
     values.clear();
+    extrema.clear();
     if (failed)
       return;
     typename MechanicalProblem<dim>::CellFields fields;
@@ -329,10 +336,24 @@ namespace anvil
       }
     for (const auto &e : expressions)
       {
-        double value = e.constant;
+        double      value = e.constant;
+        std::string note;
         for (const auto &[sign, q] : e.calls)
-          value += sign * evaluate(q, s, fields);
+          {
+            value += sign * evaluate(q, s, fields);
+            // Say what each extremum runs over (they differ by field and scene).
+            if (q.kind == "max" || q.kind == "min")
+              {
+                const std::string over =
+                  q.field == "temperature" ?
+                    (s.physics.heat() ? "nodal values" : "cell averages") :
+                    "quadrature points";
+                note += (note.empty() ? "" : "; ") + q.kind + "(" + q.field + ") over " + over;
+              }
+          }
         values.emplace_back(e.name, value);
+        if (!note.empty())
+          extrema.emplace_back(e.name, note);
       }
   }
 
@@ -400,8 +421,13 @@ namespace anvil
         return q.kind == "max" ? Utilities::MPI::max(extreme, s.communicator) :
                                  Utilities::MPI::min(extreme, s.communicator);
       }
-    const auto &v = fields.values[std::find(fields.names.begin(), fields.names.end(), q.field) -
-                                  fields.names.begin()];
+    const auto index = std::find(fields.names.begin(), fields.names.end(), q.field) -
+                       fields.names.begin();
+    // max and min over the quadrature points where the mechanics has them
+    // (a cell average lies inside its points' range); mean over cell averages.
+    const bool  at_points = q.kind != "mean" && std::size_t(index) < fields.max_values.size();
+    const auto &v         = !at_points ? fields.values[index] :
+                            q.kind == "max" ? fields.max_values[index] : fields.min_values[index];
     double      sum = 0, volume = 0, extreme = q.kind == "max" ? -1e300 : 1e300;
     for (const auto &cell : s.triangulation.active_cell_iterators())
       if (cell->is_locally_owned() && (q.body < 0 || cell->material_id() == types::material_id(q.body)))

@@ -5,6 +5,7 @@
 #include <anvil/core/input_error.h>
 #include <anvil/simulator/simulator.h>
 #include <anvil/material/point_driver.h>
+#include <anvil/thermal/thermal_problem.h>
 
 #include <chrono>
 #include <iostream>
@@ -89,6 +90,13 @@ namespace anvil
     {
       const auto declare = [](ParameterHandler &prm, const Scene &) {
         MaterialPointDriver::declare_parameters(prm);
+        // A body's Material block, copied from a scene, must read as is: its
+        // Thermal subsection (conduction, no meaning for one point) is
+        // accepted and not used. Declared here, not in material/, which
+        // does not know the thermal layer.
+        prm.enter_subsection("Material");
+        ThermalMaterial::declare_parameters(prm);
+        prm.leave_subsection();
       };
       if (help || print)
         {
@@ -333,7 +341,7 @@ namespace anvil
         const auto        end  = mid == std::string::npos ? mid : what.find('>', mid + 13);
         if (end != std::string::npos)
           return end_with("anvil: error: ",
-                          filename + ": " + what.substr(mid + 13, end - mid - 13) + " = " +
+                          filename + ": '" + what.substr(mid + 13, end - mid - 13) + "' = " +
                             what.substr(at + tag.size(), mid - at - tag.size()) +
                             ": not representable as a double (too small or too large); expected "
                             "a normal floating-point number",

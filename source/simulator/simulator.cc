@@ -404,14 +404,18 @@ namespace anvil
     if (!quiet)
       {
         timer->print_summary();
-        std::map<std::string, std::string> units;
+        std::map<std::string, std::string> units, notes;
         for (const auto &o : outputs)
-          for (const auto &[name, unit] : o->units())
-            units[name] = unit;
+          {
+            for (const auto &[name, unit] : o->units())
+              units[name] = unit;
+            for (const auto &[name, note] : o->notes())
+              notes[name] = note;
+          }
         for (const auto &[name, value] : quantities_of_interest())
           pcout << "  " << name << " = " << std::setprecision(10) << value
                 << (units[name].empty() || units[name] == "-" ? "" : " " + units[name])
-                << std::endl;
+                << (notes[name].empty() ? "" : "  (" + notes[name] + ")") << std::endl;
       }
     print_results();
     return true;

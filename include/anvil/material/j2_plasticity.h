@@ -4,6 +4,8 @@
 #include <anvil/material/laws.h>
 #include <anvil/material/material_point.h>
 
+#include <cmath>
+
 namespace anvil
 {
   /**
@@ -67,6 +69,34 @@ namespace anvil
   };
 
   /**
+   * The multiplicative rate factor of Johnson & Cook (1983):
+   *
+   *   σ_y = σ_h(ε̄, T) (1 + C ln(ε̄̇/ε̇₀))  for ε̄̇ > ε̇₀,  σ_h(ε̄, T) below,
+   *
+   * written as an overstress V = σ_h C ln(ε̄̇/ε̇₀) on the hardening law so
+   * that the return map and its consistent tangent are those of eq. (18)
+   * with this V (ε̄̇ = Δε̄/Δt over the step).
+   */
+  struct JohnsonCookRate
+  {
+    double C = 0, reference_rate = 1; // dimensionless, 1/s
+    bool   active() const { return C > 0; }
+    /// V, dV/dΔε̄ (with σ_h's slope) and Δε̄ dV/dΔε̄ at hardening value @p y.
+    PerzynaLaw::Value evaluate(double stress, double slope, double dp, double dt) const
+    {
+      PerzynaLaw::Value v;
+      const double      rate = dp / dt;
+      if (!(rate > reference_rate))
+        return v;
+      const double L   = std::log(rate / reference_rate);
+      v.stress         = stress * C * L;
+      v.derivative     = slope * C * L + stress * C / dp;
+      v.log_derivative = dp * v.derivative;
+      return v;
+    }
+  };
+
+  /**
    * J2 (von Mises) thermo-elasto-viscoplasticity with isotropic hardening,
    * seed §1.3 and §2.3: hypoelastic trial state (eq. 9, 10, 19), radial return
    * to f = 0 (eq. 11, rate-independent) or to the generalized criterion
@@ -93,7 +123,10 @@ namespace anvil
     double      heat_capacity() const override { return elastic.heat_capacity; }
     std::string name() const override
     {
-      return !plastic ? "hypoelastic" : viscosity.active() ? "Perzyna" : "J2";
+      return !plastic               ? "hypoelastic" :
+             johnson_cook           ? "Johnson-Cook" :
+             viscosity.active()     ? "Perzyna" :
+                                      "J2";
     }
 
     ElasticLaw                          elastic;
@@ -101,5 +134,7 @@ namespace anvil
     PerzynaLaw                          viscosity;
     bool plastic = true;  // false: thermo-hypoelastic only
     bool viscous = false; // true: Perzyna overstress (subsection Viscosity)
+    bool johnson_cook = false;    // true: the Johnson-Cook model (rate below)
+    JohnsonCookRate johnson_cook_rate; // active(): multiplicative rate factor, no Perzyna
   };
 } // namespace anvil

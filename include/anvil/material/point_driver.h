@@ -38,7 +38,8 @@ namespace anvil
    *     set Adiabatic            = false
    *   end
    *   subsection Output
-   *     set File = point.csv
+   *     set File    = point.csv       # relative to the .prm file's directory
+   *     set Summary =                 # empty: point.summary.json beside the CSV
    *   end
    *
    * Strain control: the components named in Strain (tensor components exx eyy
@@ -75,8 +76,10 @@ namespace anvil
      */
     void run(bool write, std::ostream *log);
 
-    /// The CSV file name (Output/File).
+    /// The CSV file name (Output/File, resolved against the .prm's directory).
     const std::string &output_file() const { return file; }
+    /// The summary's file name (Output/Summary, or the CSV's with .summary.json).
+    const std::string &summary_file() const { return summary; }
 
   private:
     enum class Control
@@ -96,6 +99,17 @@ namespace anvil
     void parse_deformation_gradient(const std::string &text);
     void check_path();
 
+    /// The state a summary reports: the last step done and its response.
+    struct Final
+    {
+      unsigned int                  steps = 0, max_return = 0, max_local = 0;
+      double                        time = 0, temperature = 0, wall_time = 0;
+      dealii::SymmetricTensor<2, 3> strain;
+      MaterialResponse              response;
+    };
+    /// Write the summary (JSON, point_summary.cc) with @p status.
+    void write_summary(const Final &final, const std::string &status) const;
+
     /// One step t_k -> t_k+1 under strain control; returns the local iterations.
     unsigned int strain_step(unsigned int                   step,
                              double                         t_new,
@@ -112,7 +126,7 @@ namespace anvil
     ObjectiveRate objective_rate = ObjectiveRate::jaumann;
     unsigned int n_steps   = 1;
     bool         adiabatic = false;
-    std::string  file;
+    std::string  file, summary;
 
     /// Strain control: per component (xx yy zz xy yz xz) the strain or the stress path.
     std::array<bool, 6>       strain_controlled{};

@@ -105,11 +105,14 @@ namespace anvil
       std::vector<double> line_search_steps;
     };
 
-    /// Per-cell fields for output (cell averages over quadrature points).
+    /// Per-cell fields for output (cell averages over quadrature points),
+    /// and each cell's largest and smallest quadrature-point value (the
+    /// extrema the quantities of interest report; the average lies inside).
     struct CellFields
     {
       std::vector<std::string>                 names;
       std::vector<dealii::Vector<double>>      values;
+      std::vector<dealii::Vector<double>>      max_values, min_values;
     };
 
     MechanicalProblem(const dealii::parallel::distributed::Triangulation<dim>           &triangulation,

@@ -107,6 +107,9 @@ namespace anvil
     virtual std::vector<std::pair<std::string, double>> results() const { return {}; }
     /// The unit of each of results() by name ("K", "N mm"; "-" dimensionless).
     virtual std::vector<std::pair<std::string, std::string>> units() const { return {}; }
+    /// What a result of results() is taken over, printed beside it, by name
+    /// ("max over quadrature points"); results without a note are not listed.
+    virtual std::vector<std::pair<std::string, std::string>> notes() const { return {}; }
 
     /// State to carry through a checkpoint (e.g. the records of a .pvd file),
     /// as named entries "key value..." (rank 0 writes; every rank reads).

@@ -14,7 +14,7 @@ namespace anvil
   {
     if (entry == "Initial yield stress")
       prm.declare_entry("Initial yield stress", "0", Patterns::Double(),
-                        "s0 in MPa (linear, voce, saturation); > 0.");
+                        "s0 in MPa (linear, voce, saturation), A (johnson-cook); > 0.");
     else if (entry == "Hardening modulus")
       prm.declare_entry("Hardening modulus", "0", Patterns::Double(),
                         "h in MPa (linear, saturation): slope of yield stress against plastic strain.");
@@ -25,13 +25,13 @@ namespace anvil
       prm.declare_entry("Saturation exponent", "0", Patterns::Double(0),
                         "delta, dimensionless (voce, saturation).");
     else if (entry == "Strength coefficient")
-      prm.declare_entry("Strength coefficient", "0", Patterns::Double(0), "K in MPa (swift).");
+      prm.declare_entry("Strength coefficient", "0", Patterns::Double(0), "K in MPa (swift), B (johnson-cook).");
     else if (entry == "Reference strain")
       prm.declare_entry("Reference strain", "0.002", Patterns::Double(0),
                         "eps0, dimensionless (swift), > 0.");
     else if (entry == "Hardening exponent")
       prm.declare_entry("Hardening exponent", "0.2", Patterns::Double(0),
-                        "n, dimensionless (swift).");
+                        "n, dimensionless (swift, johnson-cook).");
     else if (entry == "Table")
       prm.declare_entry("Table", "", Patterns::Anything(),
                         "Table model: 'eps1 : s1, eps2 : s2, ...' (dimensionless : MPa), eps from 0 "
