@@ -1,3 +1,6 @@
+// The material-point driver: a scene-free path through one point (anvil
+// --material-point). Long because it parses its own path/material file and
+// writes its own CSV and summary; splitting candidates: the path parser.
 #include <deal.II/base/numbers.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/utilities.h>
