@@ -1,8 +1,8 @@
 """Simple shear to gamma = 8 of a hypoelastic body with each objective rate
 (Path/Objective rate of the material-point driver) against its closed form,
-with order 2 in the step; for Jaumann (the scenes' rate) also through the
-finite element pipeline (one element whose nodes all follow the motion, as
-tests/simple_shear.py), which must agree with the driver.
+with order 2 in the step; and each rate through the finite element pipeline
+(Mechanics/Objective rate; elements whose nodes all follow the motion, as
+tests/simple_shear.py, on 1 and 2 processes), which must agree with the driver.
 
 Closed forms (G the shear modulus, motion x = X + gamma Y, isochoric, szz = 0):
   Jaumann:      sxy = G sin(gamma), sxx = -syy = G (1 - cos(gamma))
@@ -57,12 +57,18 @@ for rate in ("Jaumann", "Green-Naghdi", "logarithmic"):
     order = math.log(errors[0] / errors[1], 2)
     check(1.8 < order < 2.2, "%s: observed order %.3f (expected 2)" % (rate, order))
 
-# The finite element pipeline with the scenes' rate: the driver's answer.
-_, s, _ = run("tests/homogeneous.prm",
-              [bc, "Time/Time step=%g" % (1.0 / 800), "Geometry/Random distortion=0",
-               "Geometry/Blocks=body: 0, 0, 1, 1, 1, 1"], name="objective_rate_fe_jaumann")
-h = read_csv(os.path.join(os.path.dirname(path), "objective_rate_jaumann_800.csv"))
-for c in ("sxy", "sxx", "syy"):
-    close(s["quantities_of_interest"][c + "_max"], h[c][-1], 0,
-          "Jaumann: finite element %s equals the driver's" % c, atol=1e-8 * G)
+# The finite element pipeline (Mechanics/Objective rate) gives the driver's
+# answer for every rate, on one process and on two (two elements, so that
+# each process owns one).
+for rate in ("Jaumann", "Green-Naghdi", "logarithmic"):
+    tag = rate.lower().replace("-", "_")
+    h = read_csv(os.path.join(os.path.dirname(path), "objective_rate_%s_800.csv" % tag))
+    for np in (1, 2):
+        _, s, _ = run("tests/homogeneous.prm",
+                      [bc, "Mechanics/Objective rate=" + rate, "Time/Time step=%g" % (1.0 / 800),
+                       "Geometry/Random distortion=0", "Geometry/Blocks=body: 0, 0, 1, 1, %d, 1" % np],
+                      np=np, name="objective_rate_fe_%s_np%d" % (tag, np))
+        for c in ("sxy", "sxx", "syy"):
+            close(s["quantities_of_interest"][c + "_max"], h[c][-1], 0,
+                  "%s, np %d: finite element %s equals the driver's" % (rate, np, c), atol=1e-8 * G)
 finish()
