@@ -4,6 +4,7 @@
 #include <anvil/core/scene.h>
 #include <anvil/material/material_point.h>
 #include <anvil/material/laws.h>
+#include <anvil/material/number_format.h>
 #include <anvil/material/table.h>
 
 #include <algorithm>
@@ -13,17 +14,6 @@
 namespace anvil
 {
   using namespace dealii;
-
-  namespace
-  {
-    /// 6 significant digits: messages quote temperatures and values readably.
-    std::string short_number(const double v)
-    {
-      std::ostringstream o;
-      o << v;
-      return o.str();
-    }
-  } // namespace
 
   // "x1 : y1, x2 : y2, ..." -> two vectors; x strictly increasing.
   void parse_table(const std::string   &text,

@@ -1,5 +1,6 @@
 #include <anvil/core/scene.h>
 #include <anvil/material/j2_plasticity.h>
+#include <anvil/material/number_format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,14 +12,6 @@ namespace anvil
 
   namespace
   {
-    /// 6 significant digits, as the messages of the other laws.
-    std::string short_number(const double v)
-    {
-      std::ostringstream o;
-      o << v;
-      return o.str();
-    }
-
     /**
      * The flow stress of Johnson & Cook (1983) at ε̄ and T, without the rate
      * factor: σ_h = (A + B ε̄ⁿ)(1 − T*ᵐ), T* = (T − T_tr)/(T_m − T_tr)
