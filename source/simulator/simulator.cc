@@ -125,6 +125,8 @@ namespace anvil
     contents.mechanics   = scheme->needs_mechanics();
     contents.heat        = scheme->needs_heat_equation();
     contents.temperature = scheme->provides_temperature();
+    contents.steady_heat = contents.heat && (physics.heat_parameters().steady ||
+                                             physics.heat_parameters().steady_initial);
     contents.geometry    = &geometry;
     contents.contact     = &physics.contact_problem();
     parse_time(prm);
@@ -333,6 +335,12 @@ namespace anvil
           o->initial(state(0, 0));
       }
     throw_recorded_input_error(mpi_communicator);
+    if (!physics.initial_failure().empty())
+      {
+        // The steady initial field did not converge: its last iterate is in the fields.
+        stop("failed at t = 0 s: " + physics.initial_failure(), t, dt);
+        return false;
+      }
     const double eps = 1e-12 * time.end_time;
     while (t < time.end_time - eps)
       {
@@ -503,8 +511,10 @@ namespace anvil
       line << "  Newton " << std::setw(2) << r.mechanics().iterations << " |R| "
            << std::setprecision(1) << r.mechanics().residuals.front() << " -> "
            << r.mechanics().residuals.back() << " N";
-    if (physics.heat())
+    if (physics.transient_heat())
       line << "  heat " << r.thermal.internal_steps << " steps";
+    else if (physics.heat())
+      line << "  steady heat Newton " << r.thermal.nonlinear_iterations << " its";
     if (r.staggered_iterations > 0)
       line << "  staggered " << r.staggered_iterations << " its, dT " << std::setprecision(1)
            << r.staggered_change << " K, contraction " << std::setprecision(2) << r.contraction;
