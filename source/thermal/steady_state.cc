@@ -12,6 +12,8 @@
 #include <anvil/core/instantiate.h>
 #include <anvil/thermal/thermal_problem.h>
 
+#include "newton_factorisation.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -61,24 +63,15 @@ namespace anvil
     current_gamma = -1; // the transient Newton matrix M + gamma A is gone
 
     delta.reinit(locally_owned_dofs, mpi_communicator);
+    thermal::factorise_newton_matrix(newton_matrix, use_direct, parameters.polynomial_degree,
+                                     direct_control, newton_direct, newton_amg);
     if (use_direct)
-      {
-        newton_direct = std::make_unique<TrilinosWrappers::SolverDirect>(
-          direct_control, TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
-        newton_direct->initialize(newton_matrix);
-        newton_direct->solve(delta, f);
-      }
+      newton_direct->solve(delta, f);
     else
       {
         // The kept Temperature columns and radiation make A nonsymmetric: GMRES.
-        TrilinosWrappers::PreconditionAMG::AdditionalData data;
-        data.elliptic              = true;
-        data.higher_order_elements = parameters.polynomial_degree > 1;
-        data.smoother_sweeps       = 2;
-        newton_amg                 = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-        newton_amg->initialize(newton_matrix, data);
-        SolverControl            control(1000, 1e-12 * f.l2_norm());
-        SolverGMRES<Vector>      gmres(control, SolverGMRES<Vector>::AdditionalData(100));
+        SolverControl       control(1000, 1e-12 * f.l2_norm());
+        SolverGMRES<Vector> gmres(control, SolverGMRES<Vector>::AdditionalData(100));
         gmres.solve(newton_matrix, delta, f, *newton_amg);
         linear_iterations += control.last_step();
       }
