@@ -52,6 +52,7 @@ CASES = {
     "necking_bar": scene("prm/necking_bar.prm"),
     "two_blocks": scene("prm/two_blocks.prm"),
     "heat_half_space": scene("prm/heat_half_space.prm"),
+    "steady_slab": scene("prm/steady_slab.prm"),
     "necking_bar_thermal": scene("prm/necking_bar_thermal.prm", note="as shipped: adiabatic split"),
     # The other coupling schemes on the thermal necking bar, full length.
     "necking_bar_thermal_isothermal": scene(

@@ -8,6 +8,10 @@
 #include <anvil/coupling/coupled_problem.h>
 #include <anvil/material/material_point.h>
 
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
 namespace anvil
 {
   using namespace dealii;
@@ -91,6 +95,7 @@ namespace anvil
             prm.leave_subsection();
           }
         prm.leave_subsection();
+        check_steady(scene, scheme_name);
       }
     boundary_conditions.parse_parameters(prm, scene, geometry);
     contact.parse_parameters(prm, scene, geometry);
@@ -120,8 +125,61 @@ namespace anvil
                                                         thermal_boundary_conditions,
                                                         thermal_materials, timer);
         thermal->setup(0);
+        if (thermal_parameters.steady || thermal_parameters.steady_initial)
+          {
+            const auto s = thermal->solve_steady(0);
+            log_steady(thermal_parameters.steady ? "steady heat" : "steady initial temperature");
+            if (!s.converged)
+              initial_steady_failure = s.failure;
+            thermal->commit(); // the state of t = 0 (nothing flowed yet: no heat to account)
+          }
         heat_content_at_start = thermal->heat_content();
       }
+  }
+
+  template <int dim>
+  void CoupledProblem<dim>::check_steady(const Scene &scene, const std::string &scheme_name) const
+  {
+    const auto &p = thermal_parameters;
+    if (p.steady && with_mechanics)
+      scene.fail("Heat/Time integration/Method",
+                 "is steady, but Physics/Coupling is '" + scheme_name +
+                   "': a sequence of steady states is for 'thermal only'; a coupled scene "
+                   "starts from the steady field with Heat/Initial temperature field = steady");
+    if (!(p.steady || p.steady_initial))
+      return;
+    // Only fluxes (or nothing) on the boundary: K is singular (T up to a
+    // constant) and sources without an outlet have no steady state.
+    bool determined = false;
+    for (const auto &[id, b] : thermal_boundary_conditions.boundaries)
+      determined = determined || b.temperature || b.h || b.emissivity;
+    if (!determined)
+      scene.fail(p.steady ? "Heat/Time integration/Method" : "Heat/Initial temperature field",
+                 "is steady, but no boundary has a Temperature, Convection or Radiation "
+                 "condition (Heat/Boundary conditions): the steady temperature is then not "
+                 "determined (the problem is singular); give one of them");
+  }
+
+  template <int dim>
+  void CoupledProblem<dim>::log_steady(const std::string &what)
+  {
+    // Contraction orders log(r_k+1 / r_k) / log(r_k / r_k-1): 2 for Newton
+    // with the consistent tangent, 1 for a wrong one.
+    const auto        &r = thermal->steady_report();
+    std::ostringstream line;
+    line << "  " << what << " at t = " << r.time << " s: Newton " << r.increments.size()
+         << " its, |f| =" << std::scientific << std::setprecision(3);
+    for (const double x : r.residuals)
+      line << " " << x;
+    line << " mW, contraction orders";
+    for (unsigned int k = 1; k + 1 < r.residuals.size(); ++k)
+      if (r.residuals[k - 1] > 0 && r.residuals[k] > 0 && r.residuals[k + 1] > 0 &&
+          r.residuals[k] != r.residuals[k - 1])
+        line << " " << std::fixed << std::setprecision(2)
+             << std::log(r.residuals[k + 1] / r.residuals[k]) /
+                  std::log(r.residuals[k] / r.residuals[k - 1]);
+    line << (r.converged ? "" : " (not converged)");
+    log() << line.str() << std::endl;
   }
 
   template <int dim>
@@ -220,6 +278,8 @@ namespace anvil
     if (!contact.empty() && contact.has_heat())
       contact.prepare_heat(t_new - t_old);
     const auto s = thermal->solve_step(t_old, t_new);
+    if (thermal_parameters.steady)
+      log_steady("steady heat");
     report.thermal += s;
     report.thermal_wall += MPI_Wtime() - start;
     return s.converged;

@@ -7,7 +7,8 @@ namespace anvil
    * the mechanical audit's two balances (doc/energy_audit.md): the work of
    * loads, supports and contact against kinetic energy and stress work
    * (balance_error), and the stress work against elastic energy, plastic,
-   * thermal, hypoelastic-volume and F-bar work (stress_balance_error); and the heat audit (content, its change,
+   * thermal, hypoelastic-volume and F-bar work (stress_balance_error); and, for a heat equation
+   * integrated in time (a steady one: steady_heat.cc), the heat audit (content, its change,
    * heat through boundaries, sources, plastic, thermoelastic and contact
    * heat, and the balance error — computed from independent sums, so it is
    * not zero by construction).
@@ -27,7 +28,7 @@ namespace anvil
                         "balance_error [-]", "contact_work [N mm]", "flow_plastic_work [N mm]",
                         "thermal_work [N mm]", "hypoelastic_volume_work [N mm]",
                         "f_bar_work [N mm]", "stress_balance_error [-]"});
-      if (s.physics.heat())
+      if (s.physics.transient_heat())
         columns.insert(columns.end(),
                        {"heat_content [mJ]", "heat_content_change [mJ]", "boundary_heat_in [mJ]",
                         "source_heat [mJ]", "plastic_heat [mJ]", "thermoelastic_heat [mJ]",
@@ -47,7 +48,7 @@ namespace anvil
                                  e.hypoelastic_volume_work,
                                  e.f_bar_work, e.stress_balance_error()});
         }
-      if (s.physics.heat())
+      if (s.physics.transient_heat())
         {
           const auto b = s.physics.heat_balance();
           row.insert(row.end(), {b.content, b.change, b.boundary, b.source, b.plastic,
@@ -76,7 +77,7 @@ namespace anvil
           summary.set("energy", "f_bar_work", e.f_bar_work);
           summary.set("energy", "stress_balance_error", e.stress_balance_error());
         }
-      if (s.physics.heat())
+      if (s.physics.transient_heat())
         {
           const auto b = s.physics.heat_balance();
           summary.set("heat", "heat_content", b.content);

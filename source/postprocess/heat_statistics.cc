@@ -12,6 +12,10 @@ namespace anvil
 
     void start(const SimulationState<dim> &s, const bool append) override
     {
+      // A sequence of steady states has no ARKode counters (steady_heat.cc).
+      active = s.physics.transient_heat();
+      if (!active)
+        return;
       csv.open(s.output_directory + "/thermal.csv",
                {"step", "time [s]", "time_step [s]", "arkode_steps", "arkode_attempts",
                 "error_test_failures", "nonlinear_iterations", "nonlinear_failures",
@@ -25,6 +29,8 @@ namespace anvil
 
     void accepted(const SimulationState<dim> &s, const StepReport<dim> *r) override
     {
+      if (!active)
+        return;
       const auto &a = r->thermal;
       csv.add_row({double(s.step), s.time, r->time_step, double(a.internal_steps),
                    double(a.attempted_steps), double(a.error_test_failures),
@@ -37,6 +43,8 @@ namespace anvil
 
     void add_to_summary(const SimulationState<dim> &s, Summary &summary) const override
     {
+      if (!active)
+        return;
       const auto &n = s.statistics;
       summary.set("heat", "arkode_internal_steps", double(n.heat_internal_steps));
       summary.set("heat", "arkode_steps_per_step",
@@ -47,6 +55,7 @@ namespace anvil
 
   private:
     CsvHistory csv;
+    bool       active = true;
   };
 
   ANVIL_REGISTER_POSTPROCESSOR(HeatStatistics, "heat statistics",

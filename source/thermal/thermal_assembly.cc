@@ -309,7 +309,7 @@ namespace anvil
     // ġ at the Dirichlet dofs (central difference in time), for the rows
     // Ṫ_D = ġ_D and for moving M_fD ġ_D to the free rows.
     std::map<types::global_dof_index, double> g_dot;
-    if (!has_dirichlet)
+    if (!has_dirichlet || solving_steady) // a steady state has no dT/dt, at the boundary neither
       return g_dot;
     const double eps = 1e-6 * std::max(step_length, 1e-300);
     std::map<types::global_dof_index, double> plus, minus;

@@ -150,7 +150,14 @@ namespace anvil
   {
     prm.enter_subsection("Heat");
     prm.declare_entry("Initial temperature", "293", Patterns::Anything(),
-                      "T(x, 0) in K: an expression in x, y(, z) (t = start time).");
+                      "T(x, 0) in K: an expression in x, y(, z) (t = start time). With a steady "
+                      "initial field (or Method = steady): Newton's first guess.");
+    prm.declare_entry("Initial temperature field", "expression",
+                      Patterns::Selection("expression|steady"),
+                      "expression: T(x, 0) = Initial temperature; steady: the steady temperature "
+                      "of the Heat boundary conditions and Source at t = 0 (-K(T) T + F = 0, no "
+                      "mechanics' or contact heat), e.g. a part in equilibrium with a furnace or "
+                      "a cooled die before forming starts (doc/thermal.md).");
     prm.declare_entry("Polynomial degree", "1", Patterns::Integer(1, 2),
                       "Degree of the temperature elements: 1 (Q1) or 2 (Q2). Heat sources from the "
                       "mechanics are given at the points of QGauss(degree + 1): use the mechanics' degree.");
@@ -159,12 +166,15 @@ namespace anvil
                       "empty: none (the mechanics' dissipation is added separately).");
     prm.enter_subsection("Time integration");
     prm.declare_entry("Method", "DIRK order 3",
-                      Patterns::Selection("backward Euler|DIRK order 2|DIRK order 3|DIRK order 4|DIRK order 5"),
+                      Patterns::Selection("backward Euler|DIRK order 2|DIRK order 3|DIRK order 4|DIRK order 5|steady"),
                       "ARKode's implicit diagonally implicit Runge-Kutta method of that order "
                       "(SUNDIALS' default table: SDIRK-2-1-2, ARK324L2SA-DIRK-4-2-3, SDIRK-5-3-4, "
                       "ARK548L2SA-DIRK-8-4-5); backward Euler (one stage, no error estimate: "
                       "needs a Fixed step size) is the method of Physics/Coupling = monolithic, "
-                      "for comparisons with it.");
+                      "for comparisons with it. steady (Physics/Coupling = thermal only): no "
+                      "time integration, each step (and t = 0) is the steady state of the loads "
+                      "at its end time, solved by Newton (Heat/Steady state): a sequence of "
+                      "steady states, as Abaqus' *HEAT TRANSFER, STEADY STATE.");
     prm.declare_entry("Relative tolerance", "1e-6", Patterns::Double(0),
                       "ARKode's relative local error tolerance (dimensionless).");
     prm.declare_entry("Absolute tolerance", "1e-6", Patterns::Double(0),
@@ -176,6 +186,14 @@ namespace anvil
                       "ARKode steps per mechanical time step before it gives up (the step is cut back).");
     prm.declare_entry("Maximum nonlinear iterations", "10", Patterns::Integer(1),
                       "Newton iterations per stage before ARKode retries with a smaller step.");
+    prm.leave_subsection();
+    prm.enter_subsection("Steady state");
+    prm.declare_entry("Maximum iterations", "30", Patterns::Integer(1),
+                      "Newton iterations of one steady solve before it fails (a step is then "
+                      "cut back, the loads moved less; at t = 0 the run stops with exit 3).");
+    prm.declare_entry("Tolerance", "1e-8", Patterns::Double(0),
+                      "Newton stops after a full step whose largest temperature change is at most "
+                      "this, K (convergence is quadratic: the error left is ~ its square).");
     prm.leave_subsection();
     prm.enter_subsection("Linear solver");
     prm.declare_entry("Type", "automatic", Patterns::Selection("automatic|direct|iterative"),
@@ -197,15 +215,21 @@ namespace anvil
     prm.enter_subsection("Heat");
     initial_temperature = prm.get("Initial temperature");
     initial_temperature_location = scene.where("Heat/Initial temperature");
+    steady_initial = prm.get("Initial temperature field") == "steady";
     polynomial_degree   = prm.get_integer("Polynomial degree");
     source              = trim(prm.get("Source"));
     prm.enter_subsection("Time integration");
-    order = prm.get("Method") == "backward Euler" ? 1 : prm.get("Method").back() - '0';
+    steady = prm.get("Method") == "steady";
+    order  = prm.get("Method") == "backward Euler" ? 1 : steady ? 3 : prm.get("Method").back() - '0';
     relative_tolerance       = prm.get_double("Relative tolerance");
     absolute_tolerance       = prm.get_double("Absolute tolerance");
     fixed_step_size          = prm.get_double("Fixed step size");
     max_internal_steps       = prm.get_integer("Maximum internal steps");
     max_nonlinear_iterations = prm.get_integer("Maximum nonlinear iterations");
+    prm.leave_subsection();
+    prm.enter_subsection("Steady state");
+    steady_max_iterations = prm.get_integer("Maximum iterations");
+    steady_tolerance      = prm.get_double("Tolerance");
     prm.leave_subsection();
     prm.enter_subsection("Linear solver");
     linear_solver       = prm.get("Type");
@@ -220,6 +244,9 @@ namespace anvil
       scene.fail("Heat/Time integration/Method",
                  "is backward Euler, which has no error estimate: give a Fixed step size > 0 "
                  "(larger than the time step: one step per mechanical step)");
+    if ((steady || steady_initial) && !(steady_tolerance > 0))
+      scene.fail("Heat/Steady state/Tolerance", "= 0 K: expected a temperature change > 0 K "
+                                                "(round-off never reaches 0)");
     if (!(relative_tolerance > 0) && !(absolute_tolerance > 0))
       scene.fail("Heat/Time integration/Relative tolerance",
                  "and the absolute tolerance are both 0: at least one must be > 0");

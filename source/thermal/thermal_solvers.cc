@@ -6,6 +6,8 @@
 #include <anvil/core/instantiate.h>
 #include <anvil/thermal/thermal_problem.h>
 
+#include "newton_factorisation.h"
+
 #include <cmath>
 
 namespace anvil
@@ -43,21 +45,8 @@ namespace anvil
             newton_matrix.add(i, i, gamma * diagonal(i));
         newton_matrix.compress(VectorOperation::add);
       }
-    if (use_direct)
-      {
-        newton_direct = std::make_unique<TrilinosWrappers::SolverDirect>(
-          direct_control, TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
-        newton_direct->initialize(newton_matrix);
-      }
-    else
-      {
-        TrilinosWrappers::PreconditionAMG::AdditionalData data;
-        data.elliptic              = true;
-        data.higher_order_elements = parameters.polynomial_degree > 1;
-        data.smoother_sweeps       = 2;
-        newton_amg                 = std::make_unique<TrilinosWrappers::PreconditionAMG>();
-        newton_amg->initialize(newton_matrix, data);
-      }
+    thermal::factorise_newton_matrix(newton_matrix, use_direct, parameters.polynomial_degree,
+                                     direct_control, newton_direct, newton_amg);
     current_gamma = gamma;
   }
 

@@ -94,10 +94,22 @@ namespace anvil
                           bool with_mechanics, bool with_heat, const std::string &scheme_name);
 
     /// Builds the problems on the mesh (after it exists); @p quiet silences log().
+    /// With Heat/Initial temperature field = steady (or Method = steady) the
+    /// temperature starts from the steady field at t = 0; if that Newton
+    /// fails, initial_failure() says why (the run stops with results written).
     void setup(const dealii::parallel::distributed::Triangulation<dim> &triangulation,
                dealii::TimerOutput &timer, bool quiet);
     /// Notes for the user: rank 0, unless the scene is quiet.
     dealii::ConditionalOStream &log() { return *log_stream; }
+
+    const std::string &initial_failure() const { return initial_steady_failure; }
+    /// A heat equation integrated in time (not a sequence of steady states):
+    /// its heat content balance (energy.csv) applies.
+    bool transient_heat() const { return thermal && !thermal_parameters.steady; }
+    /// One line per steady solve: iterations, |f| first and last, contraction orders.
+    void log_steady(const std::string &what);
+    /// Refuses (InputError) a steady solve the scene cannot have.
+    void check_steady(const Scene &scene, const std::string &scheme_name) const;
 
     MechanicalProblem<dim>       *mechanics() { return mechanical.get(); }
     const MechanicalProblem<dim> *mechanics() const { return mechanical.get(); }
@@ -189,6 +201,7 @@ namespace anvil
     std::unique_ptr<dealii::ConditionalOStream>              log_stream;
     HeatAudit                                                audit;
     double                                                   heat_content_at_start = 0;
+    std::string                                              initial_steady_failure;
   };
 
   template <int dim>

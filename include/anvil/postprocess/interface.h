@@ -59,6 +59,7 @@ namespace anvil
     bool                       mechanics = true;   // a displacement field
     bool                       heat      = false;  // a heat equation
     bool                       temperature = false; // a temperature (solved or prescribed)
+    bool                       steady_heat = false; // a steady heat solve (Method or initial field)
     const Geometry<dim>       *geometry = nullptr;
     const ContactProblem<dim> *contact  = nullptr;
   };

@@ -135,6 +135,14 @@ namespace anvil
       double       fixed_step_size       = 0;    // s, 0: adaptive
       unsigned int max_internal_steps    = 5000;
       unsigned int max_nonlinear_iterations = 10;
+      // Steady state (steady_state.cc): Time integration/Method = steady makes
+      // every step a steady solve at its end time (thermal only);
+      // Initial temperature field = steady starts a scene from the steady
+      // field at t = 0 (Initial temperature is then Newton's first guess).
+      bool         steady                   = false;
+      bool         steady_initial           = false;
+      unsigned int steady_max_iterations    = 30;
+      double       steady_tolerance         = 1e-8; // K, largest |dT| of the last Newton step
       // Linear algebra
       std::string  linear_solver       = "automatic"; // automatic|direct|iterative
       bool         lumped_mass         = false;
@@ -250,8 +258,40 @@ namespace anvil
     const dealii::AffineConstraints<double> &hanging_constraints() const { return hanging; }
     const Vector &owned_old_temperature() const { return old_solution; }
 
-    /// Advance T from the committed state at @p time_old to @p time_new.
+    /// Advance T from the committed state at @p time_old to @p time_new
+    /// (with Method = steady: the steady state at @p time_new, solve_steady).
     Statistics solve_step(double time_old, double time_new);
+
+    /// One steady solve: Newton's residuals |f| (mW, free rows), largest
+    /// increments |dT| (K) and line-search step lengths, per iteration.
+    struct SteadyReport
+    {
+      bool                converged = false;
+      std::string         failure;
+      double              time = 0;
+      std::vector<double> residuals, increments, step_lengths;
+    };
+    /**
+     * The steady state f(T, t) = 0 (no capacity term: -K(T) T + F(T, t) = 0,
+     * seed eq. 26 without rho c dT/dt) by Newton with the consistent tangent
+     * and a backtracking line search, from the current temperature, with the
+     * Temperature boundaries at g(t). On success the current temperature is
+     * the steady one; on failure it is the last iterate (the caller reverts).
+     * doc/thermal.md, "Steady state".
+     */
+    Statistics solve_steady(double t);
+    const SteadyReport &steady_report() const { return last_steady; }
+    /// Heat flows into the bodies at the current temperature (mW): through
+    /// each Flux/Convection/Radiation boundary, by sources, and through the
+    /// Temperature boundaries from the temperature gradient k grad T . n
+    /// (not from the residual, so the balance is not closed by construction);
+    /// error = |sum| / largest term.
+    struct SteadyBalance
+    {
+      std::map<dealii::types::boundary_id, double> boundary;
+      double source = 0, dirichlet = 0, error = 0;
+    };
+    SteadyBalance steady_balance(double t) const;
     /// Accept the last solve_step (T becomes the committed state, heat flows accumulate).
     void commit();
     /// Forget the last solve_step (cut-back): T returns to the committed state.
@@ -340,6 +380,12 @@ namespace anvil
     void   setup_newton(double gamma);
     /// Boundary, source and Dirichlet heat of the step just solved (trapezoidal in time).
     void   step_balance(double time_old, double time_new);
+    /// Steady state: f(T, t) with the Temperature and hanging rows zero (|f| returned).
+    double steady_residual(double t, const Vector &T, Vector &f);
+    /// Steady state: solve A delta = f, A the tangent with unit Temperature and hanging rows.
+    void   steady_linear_solve(double t, const Vector &T, const Vector &f, Vector &delta);
+    /// Heat into the bodies through the Temperature boundaries, k grad T . n (mW).
+    double dirichlet_heat_flow(double t, const Vector &T_ghosted) const;
 
     MPI_Comm                                                 mpi_communicator;
     const dealii::parallel::distributed::Triangulation<dim> &triangulation;
@@ -387,6 +433,8 @@ namespace anvil
     double last_internal_step = 0;
     bool   has_dirichlet = false, has_hanging = false;
     unsigned long linear_iterations = 0, mass_solves = 0;
+    bool          solving_steady = false; // dirichlet_rates() is zero: no dT/dt anywhere
+    SteadyReport  last_steady;
 
     Vector solution, old_solution;                       // owned
     Vector temperature_ghosted, old_temperature_ghosted; // ghosted

@@ -1,0 +1,39 @@
+#pragma once
+
+// The heat problem's Newton matrix (M + gamma A for ARKode, A for the steady
+// state) made ready to solve with: KLU, or the AMG of a Krylov solver. One
+// place for both users (thermal_solvers.cc, steady_state.cc).
+
+#include <deal.II/lac/trilinos_precondition.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+
+#include <memory>
+
+namespace anvil
+{
+  namespace thermal
+  {
+    inline void factorise_newton_matrix(const dealii::TrilinosWrappers::SparseMatrix &matrix,
+                                        const bool use_direct, const unsigned int degree,
+                                        dealii::SolverControl &direct_control,
+                                        std::unique_ptr<dealii::TrilinosWrappers::SolverDirect> &direct,
+                                        std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> &amg)
+    {
+      if (use_direct)
+        {
+          direct = std::make_unique<dealii::TrilinosWrappers::SolverDirect>(
+            direct_control,
+            dealii::TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
+          direct->initialize(matrix);
+          return;
+        }
+      dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;
+      data.elliptic              = true;
+      data.higher_order_elements = degree > 1;
+      data.smoother_sweeps       = 2;
+      amg                        = std::make_unique<dealii::TrilinosWrappers::PreconditionAMG>();
+      amg->initialize(matrix, data);
+    }
+  } // namespace thermal
+} // namespace anvil
