@@ -119,6 +119,12 @@ expect "initial temperature 293/x, infinite on the axis" "'Heat/Initial temperat
   "${bar[@]}" --set "Heat/Initial temperature=293/x"
 expect "initial temperature -5 K (run)" "'Heat/Initial temperature' = '-5' gives -5 K at a node" \
   "$anvil" "$P/necking_bar_thermal.prm" "${o[@]}" --set "Heat/Initial temperature=-5" --set "Time/End time=0.1"
+# A prescribed temperature is absolute too: 293 - 400 t is 293 - 1.24e6 = -1239707 K at the
+# forming scene's end (3100 s); 293/y is infinite on the y = 0 edge.
+expect "prescribed temperature < 0 K at the end" "'Physics/Prescribed temperature' = '293 - 400\*t' gives -1.23971e\+06 K at a node .* at t = 3100 s: expected an absolute temperature > 0 K" \
+  "$anvil" "$P/quarter_cylinder_forming.prm" --check "${o[@]}" --set "Physics/Prescribed temperature=293 - 400*t"
+expect "prescribed temperature 293/y, infinite on an edge" "'Physics/Prescribed temperature' = '293/y' evaluates to \+inf at" \
+  "$anvil" "$P/quarter_cylinder_forming.prm" --check "${o[@]}" --set "Physics/Prescribed temperature=293/y"
 # Yield stresses that are certainly gone at the scene's temperatures, refused
 # by --check. Linear softening (seed eq. 35) vanishes at T_ref + 1/omega =
 # 293 + 1/0.002 = 793 K: an initial temperature of 800 K, or a boundary held at

@@ -288,6 +288,7 @@ namespace anvil
   void Simulator<dim>::check_against_mesh()
   {
     physics.check_temperatures(triangulation, scene, time.end_time, !scheme->provides_temperature());
+    scheme->check(triangulation, scene, time.end_time);
     for (auto &o : outputs)
       o->check(state(0, 0));
   }
