@@ -11,7 +11,11 @@
  3. A coupled heat scene (adiabatic split, convection, thermal softening and
     expansion) stopped half way and resumed on two processes: the temperature
     field, the points' temperatures and the heat audit come back, so the end
-    temperature, force and heat balance equal the uninterrupted run's."""
+    temperature, force and heat balance equal the uninterrupted run's.
+ 4. A checkpoint written with a large step (0.25 s, the whole first half)
+    resumed by a scene that now says 0.05 s continues with 0.05 s steps (the
+    rows of reactions.csv after the restart are 0.05 s apart), and the first
+    progress line says so (issue 17: a failed run's step was kept)."""
 import os
 from anvil_test import run, read_csv, check, close, finish
 
@@ -108,4 +112,18 @@ p = subprocess.run([ANVIL, os.path.join(SOURCE_DIR, "tests/plastic_block.prm")] 
 check(p.returncode == 2 and len(p.stderr.strip().splitlines()) == 1 and "'time'" in p.stderr,
       "a checkpoint entry that is not a number: one line naming it, exit 2 (%r)" % p.stderr.strip())
 open(state, "w").write(text)
+
+# 4. The scene's step applies after a restart, not the checkpoint's.
+big = base + ["Time/Time step=0.25", "Time/Maximum time step=0.25", "Time/End time=0.25"]
+out_big, _, _ = run("prm/necking_bar.prm", big, name="ckpt_big_step")
+small = ["Output/Field interval=0", "Time/Time step=0.05", "Time/End time=0.4",
+         "Output/Restart from=" + out_big + "/checkpoint"]
+_, _, stdout = run("prm/necking_bar.prm", small, name="ckpt_big_step")
+first = [l for l in stdout.splitlines() if l.startswith("anvil: restarting")]
+check(len(first) == 1 and "with dt = 0.05 s (saved step 0.25 s" in first[0],
+      "the restart says it continues with the scene's step: %r" % (first[:1],))
+times = read_csv(out_big + "/reactions.csv")["time"]
+gaps = [b - a for a, b in zip(times, times[1:]) if a >= 0.25 - 1e-12]
+check(len(gaps) == 3 and all(abs(g - 0.05) < 1e-12 for g in gaps),
+      "after the restart at 0.25 s the steps are 0.05 s: %s" % gaps)
 finish()

@@ -106,16 +106,60 @@ expect "softening reference temperature 0 K" "'$M/Hardening/Thermal softening/Re
   "$anvil" "$P/necking_bar_thermal.prm" --check "${o[@]}" --set "$M/Hardening/Thermal softening/Reference temperature=0"
 expect "mechanics temperature 0 K" "'Mechanics/Temperature' = 0.* K: expected an absolute temperature > 0 K" \
   "$anvil" "$P/necking_bar.prm" --check "${o[@]}" --set "Mechanics/Temperature=0"
+bar=("$anvil" "$P/necking_bar_thermal.prm" --check "${o[@]}")
+# Absolute temperatures at every node, refused by --check (before the mesh's
+# matrices, the output, any step): constant, a formula that crosses 0 K inside
+# the bar (26.667 mm long: 293 - 30 y = -507 K at its top), one that is
+# infinite on the axis x = 0, and the same scene when run.
 expect "initial temperature -5 K" "'Heat/Initial temperature' = '-5' gives -5 K at a node" \
+  "${bar[@]}" --set "Heat/Initial temperature=-5"
+expect "initial temperature 293 - 30 y, < 0 K for y > 9.77 mm" "'Heat/Initial temperature' = '293 - 30\*y' gives -[0-9.]+ K at a node \(0 (9\.[89]|[1-2][0-9])[0-9.]*\)" \
+  "${bar[@]}" --set "Heat/Initial temperature=293 - 30*y"
+expect "initial temperature 293/x, infinite on the axis" "'Heat/Initial temperature' = '293/x' evaluates to \+inf at x = 0" \
+  "${bar[@]}" --set "Heat/Initial temperature=293/x"
+expect "initial temperature -5 K (run)" "'Heat/Initial temperature' = '-5' gives -5 K at a node" \
   "$anvil" "$P/necking_bar_thermal.prm" "${o[@]}" --set "Heat/Initial temperature=-5" --set "Time/End time=0.1"
+# A prescribed temperature is absolute too: 293 - 400 t is 293 - 1.24e6 = -1239707 K at the
+# forming scene's end (3100 s); 293/y is infinite on the y = 0 edge.
+expect "prescribed temperature < 0 K at the end" "'Physics/Prescribed temperature' = '293 - 400\*t' gives -1.23971e\+06 K at a node .* at t = 3100 s: expected an absolute temperature > 0 K" \
+  "$anvil" "$P/quarter_cylinder_forming.prm" --check "${o[@]}" --set "Physics/Prescribed temperature=293 - 400*t"
+expect "prescribed temperature 293/y, infinite on an edge" "'Physics/Prescribed temperature' = '293/y' evaluates to \+inf at" \
+  "$anvil" "$P/quarter_cylinder_forming.prm" --check "${o[@]}" --set "Physics/Prescribed temperature=293/y"
+# Yield stresses that are certainly gone at the scene's temperatures, refused
+# by --check. Linear softening (seed eq. 35) vanishes at T_ref + 1/omega =
+# 293 + 1/0.002 = 793 K: an initial temperature of 800 K, or a boundary held at
+# 293 + 200 t K (1293 K at the end time 5 s), is beyond it. The law
+# 'temperature linear' with sigma_0(T) = 450 (1 - 0.01 (T - 293)) vanishes at
+# 393 K; with sigma_0(T) = 450 - 5 (T - 293) (an expression, no limit it can
+# name) the yield stress at 400 K is 450 - 535 = -85 MPa.
+S="$M/Hardening/Thermal softening/Softening coefficient"
+expect "softening: initial temperature past T_ref + 1/omega" "'$S' makes the yield stress vanish at T >= 793 K \(T_ref \+ 1/omega = 293 \+ 1/0.002\), but .*'Heat/Initial temperature' = '800' gives T = 800 K at a node" \
+  "${bar[@]}" --set "Heat/Initial temperature=800"
+expect "softening: boundary temperature past T_ref + 1/omega at the end" "'$S' makes the yield stress vanish at T >= 793 K .*, but .*'Heat/Boundary conditions/Temperature' on 'top' at t = 5 s gives T = 1293 K at a node" \
+  "${bar[@]}" --set "Heat/Boundary conditions/Temperature=top: 293 + 200*t"
+TL=(--set "$M/Hardening/Model=temperature linear" --set "$M/Hardening/Softened parameters=none"
+    --set "$M/Hardening/Hardening modulus of T/Value=100" --set "Heat/Initial temperature=400")
+expect "temperature linear: sigma_0(T) linear, gone at 393 K" "'$M/Hardening/Yield stress of T/Softening' makes the yield stress vanish at T >= 393 K \(T_ref \+ 1/omega = 293 \+ 1/0.01\), but .* gives T = 400 K" \
+  "${bar[@]}" "${TL[@]}" --set "$M/Hardening/Yield stress of T/Model=linear" \
+  --set "$M/Hardening/Yield stress of T/Value=450" --set "$M/Hardening/Yield stress of T/Softening=0.01"
+expect "temperature linear: sigma_0(T) an expression, -85 MPa at 400 K" "'$M/Hardening' gives the yield stress -85 MPa <= 0 at T = 400 K and plastic strain 0, but .*'Heat/Initial temperature' = '400' gives T = 400 K" \
+  "${bar[@]}" "${TL[@]}" --set "$M/Hardening/Yield stress of T/Model=expression" \
+  --set "$M/Hardening/Yield stress of T/Expression=450 - 5*(T - 293)"
+expect "mechanics only: Mechanics/Temperature past T_ref + 1/omega" "'$S' makes the yield stress vanish at T >= 793 K .*, but .*'Mechanics/Temperature' = 900 K gives T = 900 K" \
+  "$anvil" "$P/necking_bar.prm" --check "${o[@]}" --set "$M/Hardening/Thermal softening/Model=linear" --set "$S=0.002" --set "Mechanics/Temperature=900"
 # Formulas that are finite at t = 0 but not later: an input error at the first
 # evaluation that gives NaN or inf, naming the entry, the point and the time.
 expect "pressure 1/(t - 0.1)" "--set: 'Boundary conditions/Pressure' = '20\*t/\(t-0.1\)' evaluates to \+inf at .*t = 0.1: expected a finite value" \
   "$anvil" "$P/cantilever.prm" "${o[@]}" --set "Boundary conditions/Pressure=top: 20*t/(t-0.1)"
 expect "displacement sqrt(-t)" "'Boundary conditions/Displacement' = 'sqrt\(-t\)' evaluates to NaN at x = 0, y = 0, t = 0.05" \
   "$anvil" "$P/cantilever.prm" "${o[@]}" --set "Boundary conditions/Displacement=left: ux = sqrt(-t), uy = 0"
-expect "boundary temperature log(0.2 - t)" "'Heat/Boundary conditions/Temperature' = 'log\(0.2-t\)\+393' evaluates to (NaN|-inf) at .*t = 0.2" \
+# (A prescribed boundary temperature is evaluated at t = 0 and at the end time
+# by --check: this one is refused before any work, at t = 1 s.)
+expect "boundary temperature log(0.2 - t)" "'Heat/Boundary conditions/Temperature' = 'log\(0.2-t\)\+393' evaluates to (NaN|-inf) at .*t = (0.2|1):" \
   "$anvil" "$P/heat_half_space.prm" "${o[@]}" --set "Heat/Boundary conditions/Temperature=left: log(0.2-t)+393"
+# Finite at t = 0 and at the end (1 s), NaN for 0.3 < t < 0.6: met by the run.
+expect "boundary temperature NaN between 0.3 s and 0.6 s" "'Heat/Boundary conditions/Temperature' = '393 \+ sqrt\(\(t-0.3\)\*\(t-0.6\)\)' evaluates to NaN at .*t = 0\.[3-6]" \
+  "$anvil" "$P/heat_half_space.prm" "${o[@]}" --set "Heat/Boundary conditions/Temperature=left: 393 + sqrt((t-0.3)*(t-0.6))"
 expect "tool motion sqrt(-t)" "'Contact/floor/Motion' = 'if\(t>0, sqrt\(-t\), 0\)' evaluates to NaN at t = " \
   "$anvil" "$src/tests/contact_block.prm" "${o[@]}" --set "Contact/floor/Motion=0, if(t>0, sqrt(-t), 0)"
 # The pressure is infinite on part of the boundary only: on 2 processes, the
@@ -150,6 +194,34 @@ if [ $status -eq 3 ] && [ "$(printf '%s\n' "$mine" | grep -c .)" -eq 1 ] &&
 else
   echo "FAIL  fault on one process, the other in a collective (exit $status after ${elapsed} s): ${err:0:600}"; fail=1
 fi
+
+# A softening that the run's own heating drives past its vanishing temperature
+# (omega = 0.05 /K: T_ref + 1/omega = 293 + 20 = 313 K; the bar heats past it)
+# is stopped at the first converged state beyond it, not in the trial
+# iterates: exit 3, one line naming the point's temperature (>= 313 K), the
+# time and the entry, the results and a checkpoint written; on 2 processes the
+# same line (the hottest point, whatever the partition).
+soft=("$P/necking_bar_thermal.prm" --set "Output/Verbosity=quiet" --set "Physics/Coupling=isothermal split"
+      --set "$S=0.05")
+stopped=""
+for np in 1 2; do
+  n=$((n + 1))
+  run=("$anvil" "${soft[@]}" --set "Output/Directory=$work/soft$np")
+  [ $np -eq 2 ] && run=(mpirun -np 2 --oversubscribe "${run[@]}")
+  err=$(timeout 300 "${run[@]}" 2>&1 >/dev/null); status=$?
+  mine=$(printf '%s\n' "$err" | grep "^anvil:")
+  line=$(printf '%s' "$mine" | sed 's/ (last converged state.*//')
+  if [ $status -eq 3 ] && [ "$(printf '%s\n' "$mine" | grep -c .)" -eq 1 ] &&
+     printf '%s' "$mine" | grep -Eq "^anvil: simulation stopped: the yield stress vanished at t = [0-9.e+-]+ s: a converged state has T = (31[3-9]|3[2-9][0-9]|[4-9][0-9][0-9])(\.[0-9]+)? K at a point .*'$S' makes the yield stress vanish at T >= 313 K \(T_ref \+ 1/omega = 293 \+ 1/0.05\)" &&
+     [ -f "$work/soft$np/checkpoint/state.txt" ] && grep -q 'yield stress vanished' "$work/soft$np/summary.json" &&
+     { [ $np -eq 1 ] || [ "$line" = "$stopped" ]; }; then
+    echo "PASS  softening past T_ref + 1/omega in the run, $np process(es): exit 3, checkpoint and summary written: $mine"
+  else
+    echo "FAIL  softening past T_ref + 1/omega in the run, $np process(es) (exit $status): ${err:0:600}"
+    [ $np -eq 2 ] && echo "      1 process said: $stopped"; fail=1
+  fi
+  [ $np -eq 1 ] && stopped="$line"
+done
 echo "$n hostile inputs tried"
 rm -rf "$work"
 exit $fail

@@ -1,8 +1,12 @@
 #include <deal.II/base/function_parser.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/utilities.h>
 
 #include <anvil/core/expression.h>
 #include <anvil/core/scene.h>
 #include <anvil/coupling/interface.h>
+
+#include <sstream>
 
 namespace anvil
 {
@@ -35,8 +39,38 @@ namespace anvil
 
     void parse_parameters(ParameterHandler &prm, const Scene &scene) override
     {
-      const std::string text = prm.get({"Physics"}, "Prescribed temperature");
-      temperature            = parse_expression<dim>(text, scene, "Physics/Prescribed temperature");
+      text        = prm.get({"Physics"}, "Prescribed temperature");
+      temperature = parse_expression<dim>(text, scene, "Physics/Prescribed temperature");
+    }
+
+    // The thermal strains and T-dependent laws need absolute temperatures:
+    // T(x, t) at every node at t = 0 and at the end time (where a ramp ends).
+    void check(const parallel::distributed::Triangulation<dim> &tria, const Scene &scene,
+               const double end_time) const override
+    {
+      std::string problem;
+      for (const double t : {0., end_time})
+        {
+          temperature->set_time(t);
+          for (const auto &cell : tria.active_cell_iterators())
+            if (cell->is_locally_owned())
+              for (const unsigned int v : cell->vertex_indices())
+                if (const double T = temperature->value(cell->vertex(v)); !(T > 0) && problem.empty())
+                  {
+                    std::ostringstream m;
+                    m << "= '" << text << "' gives " << T << " K at a node (" << cell->vertex(v)
+                      << ") at t = " << t << " s: expected an absolute temperature > 0 K";
+                    problem = m.str();
+                  }
+        }
+      temperature->set_time(0);
+      const MPI_Comm comm = tria.get_communicator();
+      throw_recorded_input_error(comm); // NaN or inf: named with where and when
+      const unsigned int n = Utilities::MPI::n_mpi_processes(comm);
+      const unsigned int first =
+        Utilities::MPI::min(problem.empty() ? n : Utilities::MPI::this_mpi_process(comm), comm);
+      if (first < n)
+        scene.fail("Physics/Prescribed temperature", Utilities::MPI::broadcast(comm, problem, first));
     }
 
     void initialize(CoupledProblem<dim> &p) override
@@ -71,6 +105,7 @@ namespace anvil
     }
 
     std::shared_ptr<FunctionParser<dim>> temperature;
+    std::string                          text;
   };
 
   ANVIL_REGISTER_COUPLING_SCHEME(

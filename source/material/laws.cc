@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace anvil
@@ -186,6 +187,18 @@ namespace anvil
         default:
           return interpolate(T_table, p_table, T, false).second;
       }
+  }
+
+  double TemperatureLaw::vanishing_temperature() const
+  {
+    if (kind == Kind::linear && p0 > 0 && omega > 0)
+      return T_ref + 1 / omega;
+    return std::numeric_limits<double>::infinity();
+  }
+
+  std::string TemperatureLaw::vanishing_formula() const
+  {
+    return "T_ref + 1/omega = " + short_number(T_ref) + " + 1/" + short_number(omega);
   }
 
   void TemperatureLaw::require_above(const Scene       &scene,

@@ -300,6 +300,8 @@ namespace anvil
   template <int dim>
   void Simulator<dim>::check_against_mesh()
   {
+    physics.check_temperatures(triangulation, scene, time.end_time, !scheme->provides_temperature());
+    scheme->check(triangulation, scene, time.end_time);
     for (auto &o : outputs)
       o->check(state(0, 0));
   }
@@ -408,6 +410,15 @@ namespace anvil
             }
         if (!quiet)
           print_step(r, t, step);
+        // A converged state whose temperature the yield stress does not
+        // survive (softening past its vanishing temperature): every later
+        // step would fail, so stop here with this state written.
+        if (physics.mechanics())
+          if (const std::string lost = physics.mechanics()->strength_lost(t); !lost.empty())
+            {
+              stop(lost, t, step);
+              return false;
+            }
         dt = scheme->easy(r, time.easy_iterations) ?
                std::min(step * time.growth_factor, time.maximum_time_step) :
                step;

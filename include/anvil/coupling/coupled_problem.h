@@ -93,6 +93,17 @@ namespace anvil
     void parse_parameters(dealii::ParameterHandler &prm, Scene &scene, const Geometry<dim> &geometry,
                           bool with_mechanics, bool with_heat, const std::string &scheme_name);
 
+    /**
+     * Before any work (--check and run), on the mesh: the temperatures the
+     * scene sets — Heat/Initial temperature at every node, the prescribed
+     * boundary temperatures at t = 0 and @p end_time, Mechanics/Temperature
+     * if @p uniform_temperature — are finite absolute temperatures and ones
+     * every body's yield stress survives (MaterialModel::strength_lost).
+     * Throws one InputError on every process (temperature_check.cc).
+     */
+    void check_temperatures(const dealii::parallel::distributed::Triangulation<dim> &triangulation,
+                            const Scene &scene, double end_time, bool uniform_temperature) const;
+
     /// Builds the problems on the mesh (after it exists); @p quiet silences log().
     /// With Heat/Initial temperature field = steady (or Method = steady) the
     /// temperature starts from the steady field at t = 0; if that Newton

@@ -40,6 +40,13 @@ namespace anvil
     /// The scheme's own entries (declared by the registry in `Physics`).
     virtual void parse_parameters(dealii::ParameterHandler & /*prm*/, const Scene & /*scene*/) {}
 
+    /// Before any work (--check and run), on the mesh: what the scheme itself
+    /// sets that the mesh can refute (a given temperature that is not an
+    /// absolute one at some node); throws InputError.
+    virtual void check(const dealii::parallel::distributed::Triangulation<dim> & /*triangulation*/,
+                       const Scene & /*scene*/, double /*end_time*/) const
+    {}
+
     /// Wire the problems together, once they exist and before the first step
     /// (after a restart, too: the state is then already loaded).
     virtual void initialize(CoupledProblem<dim> &p) { problem = &p; }

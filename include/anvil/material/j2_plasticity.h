@@ -117,6 +117,8 @@ namespace anvil
                           const std::string        &path) override;
 
     std::unique_ptr<MaterialPoint> create_point() const override;
+    /// The hardening law's strength_limit(), then σᵥ(ε̄, T) > 0 (material/strength.cc).
+    StrengthLoss strength_lost(double T, double eps) const override;
     double      bulk_modulus() const override { return elastic.bulk_modulus(); }
     double      shear_modulus() const override { return elastic.shear_modulus(); }
     double      density() const override { return elastic.density; }

@@ -61,6 +61,12 @@ namespace anvil
      */
     void require_above(const Scene &scene, double bound, bool strict, const std::string &what) const;
 
+    /// The lowest temperature above T_ref where a linear law p0 (1 − ω (T − T_ref))
+    /// with p0 > 0 reaches 0, T_ref + 1/ω (ω > 0); +inf for the others (a table
+    /// that require_above() passed stays positive; an expression is not analysed).
+    double      vanishing_temperature() const;
+    std::string vanishing_formula() const;
+
   private:
     double general_value(double T) const;
     double general_derivative(double T) const;

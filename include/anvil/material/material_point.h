@@ -131,6 +131,17 @@ namespace anvil
   };
 
   /**
+   * Why a model has no strength at a state (empty `location`: it has): the
+   * entry responsible, "file:line: '<path>'", and what it does there
+   * ("makes the yield stress vanish at T >= 313 K (T_ref + 1/omega = ...)").
+   */
+  struct StrengthLoss
+  {
+    std::string location, reason;
+    explicit operator bool() const { return !location.empty(); }
+  };
+
+  /**
    * A material law with its parameters: declared and parsed from one
    * subsection, shared by the points of one body.
    */
@@ -163,6 +174,11 @@ namespace anvil
     /// Specific heat c, mm²/(s² K).
     virtual double heat_capacity() const { return 0; }
     virtual std::string name() const     = 0;
+
+    /// Whether the yield stress is gone at temperature @p T (K) and
+    /// equivalent plastic strain @p eps: checked on converged states and on
+    /// the scene's initial temperatures, never on trial iterates (issue 17).
+    virtual StrengthLoss strength_lost(double /*T*/, double /*eps*/) const { return {}; }
   };
 
   /// A material point that cannot be updated (e.g. the yield stress vanished

@@ -135,6 +135,13 @@ namespace anvil
     void commit_step();
     /// Forget the last solve (time step cut back).
     void revert_step();
+    /**
+     * After commit_step(), collective: "" if every point keeps a yield
+     * stress > 0 at its committed temperature and at the one the next step
+     * starts from, else one line naming the hottest point that does not, the
+     * time @p time and the entry responsible (strength_check.cc, issue 17).
+     */
+    std::string strength_lost(double time) const;
 
     /// Contact pairs to assemble with the bodies (null: none). Set before setup().
     void set_contact(ContactProblem<dim> *c) { contact = c; }

@@ -47,6 +47,19 @@ namespace anvil
            std::find(s.begin(), s.end(), "all") != s.end();
   }
 
+  HardeningLaw::StrengthLimit HardeningLaw::strength_limit() const
+  {
+    return softening_limit(softened("initial yield stress") || softened("strength coefficient"));
+  }
+
+  HardeningLaw::StrengthLimit HardeningLaw::softening_limit(const bool yield_stress_softened) const
+  {
+    if (!yield_stress_softened || !thermal)
+      return {};
+    return {thermal->vanishing_temperature(), thermal->vanishing_location,
+            thermal->vanishing_formula()};
+  }
+
   void declare_hardening_parameters(ParameterHandler &prm)
   {
     const auto &registry = HardeningLawRegistry::instance();

@@ -55,6 +55,8 @@ namespace anvil
         return v;
       }
 
+      StrengthLimit strength_limit() const override { return softening_limit(soft_A); }
+
       bool is_nondecreasing(const double T) const override
       {
         return scale(soft_B, thermal->factor(T)) * B >= 0;

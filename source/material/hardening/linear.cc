@@ -38,7 +38,8 @@ namespace anvil
         return v;
       }
 
-      bool is_linear() const override { return true; }
+      bool          is_linear() const override { return true; }
+      StrengthLimit strength_limit() const override { return softening_limit(soft_sigma0); }
       bool is_nondecreasing(const double T) const override
       {
         return scale(soft_h, thermal->factor(T)) * h >= 0;

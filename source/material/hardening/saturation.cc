@@ -58,6 +58,8 @@ namespace anvil
         return v;
       }
 
+      StrengthLimit strength_limit() const override { return softening_limit(soft_sigma0); }
+
       bool is_nondecreasing(const double T) const override
       {
         const double theta = thermal->factor(T);

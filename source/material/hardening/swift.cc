@@ -41,6 +41,8 @@ namespace anvil
         return v;
       }
 
+      StrengthLimit strength_limit() const override { return softening_limit(soft_K); }
+
       // Slope K n (ε₀ + ε̄)^{n−1} with n ≥ 0.
       bool is_nondecreasing(const double T) const override
       {

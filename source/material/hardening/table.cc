@@ -38,6 +38,9 @@ namespace anvil
         return v;
       }
 
+      // θ multiplies the whole table, whatever `Softened parameters` says.
+      StrengthLimit strength_limit() const override { return softening_limit(true); }
+
       bool is_nondecreasing(const double T) const override
       {
         return thermal->factor(T) >= 0 && nondecreasing;

@@ -39,6 +39,8 @@ namespace anvil
         prm.leave_subsection();
         // σ₀ ≤ 0 anywhere in the table's range would remove all strength.
         sigma0.require_above(scene, 0, true, "the initial yield stress");
+        const std::string entry = path + "/Yield stress of T/Softening";
+        sigma0_location         = scene.where(entry) + ": '" + entry + "'";
         soft_sigma0 = softened("initial yield stress");
         soft_h      = softened("hardening modulus");
       }
@@ -58,6 +60,15 @@ namespace anvil
       }
 
       bool is_linear() const override { return true; }
+
+      // The softening's limit, or where σ₀(T) itself reaches 0, whichever is first.
+      StrengthLimit strength_limit() const override
+      {
+        StrengthLimit limit = softening_limit(soft_sigma0);
+        if (const double T0 = sigma0.vanishing_temperature(); T0 < limit.temperature)
+          limit = {T0, sigma0_location, sigma0.vanishing_formula()};
+        return limit;
+      }
       bool is_nondecreasing(const double T) const override
       {
         return scale(soft_h, thermal->factor(T)) * h.value(T) >= 0;
@@ -66,6 +77,7 @@ namespace anvil
     private:
       TemperatureLaw sigma0, h;
       bool           soft_sigma0 = false, soft_h = false;
+      std::string    sigma0_location;
     };
   } // namespace
 } // namespace anvil

@@ -44,8 +44,14 @@ namespace anvil
         return v;
       }
       bool is_nondecreasing(double) const override { return true; } // B >= 0, θ >= 0
+      // θ = 0 from T* = 1 on: no strength at and above the melting temperature.
+      StrengthLimit strength_limit() const override
+      {
+        return {T_melt, melt_location, "T_m = " + short_number(T_melt)};
+      }
 
-      double A = 0, B = 0, n = 1, m = 1, T_melt = 1356, T_transition = 293;
+      double      A = 0, B = 0, n = 1, m = 1, T_melt = 1356, T_transition = 293;
+      std::string melt_location;
     };
 
     /// Johnson-Cook thermo-viscoplasticity: J2 with σ_y = σ_h(ε̄, T)(1 + C ln(ε̄̇/ε̇₀)).
@@ -108,7 +114,8 @@ namespace anvil
                 "an absolute temperature > 0 K");
         require(flow->T_melt > flow->T_transition, "Melting temperature", flow->T_melt,
                 "T_m > Transition temperature (" + short_number(flow->T_transition) + " K)");
-        flow->location = scene.where(p + "/A") + ": '" + p + "'";
+        flow->location      = scene.where(p + "/A") + ": '" + p + "'";
+        flow->melt_location = scene.where(p + "/Melting temperature") + ": '" + p + "/Melting temperature'";
         hardening      = std::move(flow);
       }
     };

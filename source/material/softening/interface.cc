@@ -31,6 +31,8 @@ namespace anvil
       scene.fail(path + "/Thermal softening/Reference temperature",
                  "= " + std::to_string(law->T_ref) + " K: expected an absolute temperature > 0 K");
     law->parse_parameters(prm, scene, path + "/Thermal softening");
+    const std::string entry = path + "/Thermal softening/" + law->vanishing_entry();
+    law->vanishing_location = scene.where(entry) + ": '" + entry + "'";
     prm.leave_subsection();
     return law;
   }

@@ -1,4 +1,5 @@
 #include <anvil/core/scene.h>
+#include <anvil/material/number_format.h>
 #include <anvil/material/softening/interface.h>
 
 #include <algorithm>
@@ -41,6 +42,10 @@ namespace anvil
           return 0;
         return -exponent * std::pow(s, exponent - 1) / (T_melt - T_ref);
       }
+
+      double      vanishing_temperature() const override { return T_melt; }
+      std::string vanishing_formula() const override { return "T_melt = " + short_number(T_melt); }
+      std::string vanishing_entry() const override { return "Melting temperature"; }
 
     private:
       double T_melt = 1800, exponent = 1;

@@ -1,3 +1,4 @@
+#include <anvil/material/number_format.h>
 #include <anvil/material/softening/interface.h>
 
 namespace anvil
@@ -21,6 +22,15 @@ namespace anvil
       }
       double factor(const double T) const override { return 1 - omega * (T - T_ref); }
       double derivative(double) const override { return -omega; }
+      double vanishing_temperature() const override
+      {
+        return omega > 0 ? T_ref + 1 / omega : ThermalSoftening::vanishing_temperature();
+      }
+      std::string vanishing_formula() const override
+      {
+        return "T_ref + 1/omega = " + short_number(T_ref) + " + 1/" + short_number(omega);
+      }
+      std::string vanishing_entry() const override { return "Softening coefficient"; }
 
     private:
       double omega = 0;

@@ -1,6 +1,8 @@
+#include <anvil/material/number_format.h>
 #include <anvil/material/softening/interface.h>
 #include <anvil/material/table.h>
 
+#include <algorithm>
 #include <vector>
 
 namespace anvil
@@ -30,6 +32,26 @@ namespace anvil
       {
         return interpolate(T_table, f_table, T, false).second;
       }
+
+      // θ is linear between the nodes and constant outside: the first
+      // crossing of 0 above T_ref is on the first segment that reaches it.
+      double vanishing_temperature() const override
+      {
+        if (!(factor(T_ref) > 0))
+          return T_ref;
+        for (unsigned int i = 1; i < T_table.size(); ++i)
+          if (T_table[i] > T_ref && !(f_table[i] > 0))
+            {
+              const double T0 = std::max(T_table[i - 1], T_ref), f0 = factor(T0);
+              return T0 + (T_table[i] - T0) * f0 / (f0 - f_table[i]);
+            }
+        return ThermalSoftening::vanishing_temperature();
+      }
+      std::string vanishing_formula() const override
+      {
+        return "where theta = 0 in the table (T_ref = " + short_number(T_ref) + " K)";
+      }
+      std::string vanishing_entry() const override { return "Table"; }
 
     private:
       std::vector<double> T_table, f_table;

@@ -5,6 +5,7 @@
 #include <anvil/core/registry.h>
 #include <anvil/material/softening/interface.h>
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -69,6 +70,22 @@ namespace anvil
 
     double initial_yield_stress(double T) const { return evaluate(0, T).stress; }
 
+    /// Where the yield stress vanishes as the temperature rises: σᵥ(0, T) has
+    /// no strength for T >= temperature (+inf: never), because of the entry
+    /// at `location` ("file:line: '<path>'"), by `formula`.
+    struct StrengthLimit
+    {
+      double      temperature = std::numeric_limits<double>::infinity();
+      std::string location, formula;
+    };
+    /**
+     * The built-in laws: the softening's vanishing temperature when θ
+     * multiplies the yield stress at zero plastic strain (the initial yield
+     * stress or the strength coefficient is softened), +inf otherwise.
+     * A law with a temperature dependence of its own overrides it.
+     */
+    virtual StrengthLimit strength_limit() const;
+
     /// "file:line: '<path>/Hardening'": where the scene sets the law, for errors.
     std::string location;
     const ThermalSoftening &softening() const { return *thermal; }
@@ -93,6 +110,9 @@ namespace anvil
     }
 
     std::unique_ptr<ThermalSoftening> thermal;
+
+    /// The thermal softening's limit if @p yield_stress_softened, else none.
+    StrengthLimit softening_limit(bool yield_stress_softened) const;
 
   private:
     std::vector<std::string> softened_parameters;

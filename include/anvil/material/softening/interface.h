@@ -4,6 +4,7 @@
 
 #include <anvil/core/registry.h>
 
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -42,7 +43,24 @@ namespace anvil
     /// T_ref in K: where the yield parameters are given (θ = 1 for the built-in laws).
     double reference_temperature() const { return T_ref; }
 
+    /**
+     * The lowest temperature above T_ref where θ reaches 0, K (+inf if it
+     * never does): T_ref + 1/ω (linear, ω > 0), T_melt (johnson-cook), the
+     * first crossing of a table. A softened yield stress has no strength
+     * there: a converged state that reaches it ends the run (issue 17).
+     */
+    virtual double vanishing_temperature() const { return std::numeric_limits<double>::infinity(); }
+    /// How vanishing_temperature() follows from the entries, for messages
+    /// (e.g. "T_ref + 1/omega = 293 + 1/0.002").
+    virtual std::string vanishing_formula() const { return ""; }
+    /// "file:line: '<path>/Thermal softening/<entry>'": the entry that sets
+    /// vanishing_temperature() (vanishing_entry()), for messages.
+    std::string vanishing_location;
+
   protected:
+    /// The entry of `subsection Thermal softening` that sets vanishing_temperature().
+    virtual std::string vanishing_entry() const { return "Model"; }
+
     double T_ref = 293;
 
     friend std::unique_ptr<ThermalSoftening> create_thermal_softening(dealii::ParameterHandler &,
