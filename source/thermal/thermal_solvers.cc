@@ -6,6 +6,8 @@
 #include <anvil/core/instantiate.h>
 #include <anvil/thermal/thermal_problem.h>
 
+#include "klu_factorization.h"
+
 #include <cmath>
 
 namespace anvil
@@ -44,11 +46,7 @@ namespace anvil
         newton_matrix.compress(VectorOperation::add);
       }
     if (use_direct)
-      {
-        newton_direct = std::make_unique<TrilinosWrappers::SolverDirect>(
-          direct_control, TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
-        newton_direct->initialize(newton_matrix);
-      }
+      newton_direct->factorize(newton_matrix); // numeric only: the pattern is the setup's
     else
       {
         TrilinosWrappers::PreconditionAMG::AdditionalData data;
