@@ -41,6 +41,31 @@ cases = [
     ("3D, standard", ["Dimension=3", "Mechanics/Element=standard", "Geometry/Blocks=body: 0, 0, 0, 1, 1, 1, 3, 3, 3",
                       "Boundary conditions/Displacement=bottom: ux = 0, uy = 0, uz = 0; top: ux = 0.05*t, uy = -0.1*t, uz = 0.02*t"]),
 ]
+# The other objective rates (Mechanics/Objective rate): their tangent
+# differentiates the kinematics (Delta R, Delta eps) by central differences
+# of step 1e-6 in F (rate_tangent.cc), an O(1e-12) truncation and ~1e-10
+# round-off, chained with the exact material tangent. That documented
+# accuracy (doc/mechanics.md) is the assertion: below 1e-7 like Jaumann's
+# exact tangent (both measure ~1e-9 here, the check's own floor), where a
+# wrong or missing rotation term would show at the stress-to-modulus ratio
+# (~1e-3) and a strain or hoop term at O(1).
+RATE_BOUND = 1e-7
+AXIS = ["Geometry/Blocks=body: 0, 0, 1, 1, 4, 4"]
+BLOCK_3D = ["Dimension=3", "Geometry/Blocks=body: 0, 0, 0, 1, 1, 1, 3, 3, 3",
+            "Boundary conditions/Displacement=bottom: ux = 0, uy = 0, uz = 0; top: ux = 0.05*t, uy = -0.1*t, uz = 0.02*t"]
+AXI = ["Mechanics/Two-dimensional model=axisymmetric"]
+rate_cases = []
+for rate in ("Jaumann", "Green-Naghdi", "logarithmic"):
+    r = ["Mechanics/Objective rate=" + rate]
+    # Jaumann's plane strain, axisymmetric and 3D F-bar cases are above.
+    rate_cases += [("axisymmetric on the axis, standard, " + rate, r + AXI + AXIS + ["Mechanics/Element=standard"])]
+    if rate != "Jaumann":
+        rate_cases += [("plane strain, F-bar, " + rate, r),
+                       ("axisymmetric, F-bar, " + rate, r + AXI),
+                       ("3D, F-bar, " + rate, r + BLOCK_3D)]
+cases += rate_cases
+rate_names = set(c[0] for c in rate_cases)
+worst_by_rate = {}
 for name, sets in cases:
     tag = re.sub("[^a-z0-9]+", "_", name.lower())
     out, s, stdout = run("tests/plastic_block.prm", sets + ["Mechanics/Newton/Check tangent=true", "Output/Verbosity=normal"],
@@ -67,7 +92,14 @@ for name, sets in cases:
     plastic = s["quantities_of_interest"] if "quantities_of_interest" in s else {}
     print("  %-32s %2d checks, worst FD error %.2e, Newton %d its / %d steps, last orders %s"
           % (name, len(errors), max(errors), s["newton_iterations"], s["steps"], " ".join("%.2f" % o for o in orders)))
-    check(len(errors) > 0 and max(errors) < 1e-5, "%s: tangent matches finite differences (%.2e)" % (name, max(errors)))
+    bound = RATE_BOUND if name in rate_names else 1e-5
+    check(len(errors) > 0 and max(errors) < bound, "%s: tangent matches finite differences (%.2e < %.0e)"
+          % (name, max(errors), bound))
+    if name in rate_names or name in ("plane strain, F-bar", "axisymmetric, F-bar", "3D, F-bar"):
+        rate = name.rsplit(", ", 1)[1] if name in rate_names else "Jaumann"
+        worst_by_rate[rate] = max(worst_by_rate.get(rate, 0), max(errors))
     check(s["cut_backs"] == 0, "%s: no cut-back" % name)
     check(s["newton_iterations"] <= 12 * s["steps"], "%s: at most 12 Newton iterations per step (load steps of 25 %%)" % name)
+for rate, worst in sorted(worst_by_rate.items()):
+    print("  %-14s worst FD error over plane strain, axisymmetric (on and off the axis) and 3D: %.2e" % (rate, worst))
 finish()

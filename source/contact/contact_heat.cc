@@ -37,7 +37,23 @@ namespace anvil
           t *= -1;
         for (const auto f : node_faces[node])
           if (surface.has(faces[f]))
-            area += 0.5 * std::max(0., (x[faces[f].nodes[1]] - x[faces[f].nodes[0]]) * t);
+            {
+              const auto  &nodes     = faces[f].nodes;
+              const double projected = std::max(0., (x[nodes[1]] - x[nodes[0]]) * t);
+              // Axisymmetric: the node's share of the ring the projected
+              // segment sweeps, ∫ N 2πr ds = 2π L (2 r_node + r_other)/6, as
+              // the tributary area of the penalty (contact_problem.cc), so a
+              // uniform penetration gives a uniform pressure (eq. 34). With
+              // 2π r_node L/2 the node on the axis had no area and conducted
+              // nothing, and the outer node's pressure was low by L/(3R).
+              if (axisymmetric)
+                area += 2 * numbers::PI * projected *
+                        (2 * std::abs(x[node][0]) +
+                         std::abs(x[nodes[0] == node ? nodes[1] : nodes[0]][0])) /
+                        6;
+              else
+                area += 0.5 * projected;
+            }
       }
     else
       for (const auto f : node_faces[node])
@@ -50,8 +66,6 @@ namespace anvil
             const Tensor<1, dim> facet = 0.5 * cross_product_3d(d1, d2); // along the facet's outward normal
             area += 0.25 * std::max(0., -(facet * normal));              // the master normal faces the slave
           }
-    if (axisymmetric)
-      area *= 2 * numbers::PI * x[node][0];
     return area;
   }
 
@@ -242,7 +256,7 @@ namespace anvil
   void ContactProblem<dim>::heat_links(std::vector<std::vector<types::global_dof_index>> &u_columns,
                                        std::vector<std::vector<types::global_dof_index>> &T_rows) const
   {
-    for (const auto &[p, pass, n, f] : allowed)
+    for (const auto &[p, pass, n, f] : step_allowed)
       {
         std::vector<types::global_dof_index> u(node_dofs[n].begin(), node_dofs[n].end()), T;
         T.push_back(node_thermal_dof[n]);

@@ -328,6 +328,7 @@ namespace anvil
     gather_positions(u_old, x_old);
     areas.clear();
     trials.clear();
+    step_allowed.clear();
     for (unsigned int p = 0; p < pairs.size(); ++p)
       for (unsigned int pass = 0; pass < pairs[p].passes(); ++pass)
         {
@@ -346,9 +347,12 @@ namespace anvil
           candidate_faces(master_side(p, pass), x_old, 1.5 * largest_face, mine, candidates);
           for (const auto &[n, list] : candidates)
             for (const auto f : list)
-              if ((!pairs[p].self || !neighbourhood[p].always_excluded(n, f)) &&
-                  allowed.insert({p, pass, n, f}).second)
-                grew = true;
+              if (!pairs[p].self || !neighbourhood[p].always_excluded(n, f))
+                {
+                  step_allowed.insert({p, pass, n, f});
+                  if (allowed.insert({p, pass, n, f}).second)
+                    grew = true;
+                }
         }
   }
 
@@ -476,6 +480,7 @@ namespace anvil
                                                              law, with_matrix);
                             if (result.in_contact)
                               {
+                                step_allowed.insert({p, pass, n, unsigned(corner.first)});
                                 if (!allowed.count({p, pass, n, unsigned(corner.first)}))
                                   {
                                     allowed.insert({p, pass, n, unsigned(corner.first)});
@@ -502,6 +507,7 @@ namespace anvil
                       }
                     if (best_face >= 0 && result.in_contact)
                       {
+                        step_allowed.insert({p, pass, n, unsigned(best_face)});
                         if (!allowed.count({p, pass, n, unsigned(best_face)}))
                           {
                             allowed.insert({p, pass, n, unsigned(best_face)});

@@ -115,7 +115,8 @@ namespace anvil
     // to which the step's contact links are added; the exchange's T columns.
     CellDofs                                   all_u, all_T;
     std::map<dealii::types::global_dof_index, DofList> T_to_u_cells, T_to_T_contact;
-    std::size_t                                n_contact_links = 0, K_nonzeros = 0;
+    CellDofs                                   contact_u_columns, contact_T_rows; // the links coloured
+    std::size_t                                K_nonzeros = 0;
     bool                                       contact_heat    = false;
     double                                     step_length     = 0;
     dealii::TrilinosWrappers::SparseMatrix jacobian, heat_block; // heat_block: K_TT for the AMG

@@ -127,9 +127,13 @@ namespace anvil
 
     TrilinosWrappers::MPI::Vector du(locally_owned_dofs, mpi_communicator);
     double last_increment = -1;
+    // K and R already assembled at the current iterate (by the line search's
+    // full-step trial): the iteration costs one assembly, not one plus a
+    // residual evaluation at the same state.
+    bool assembled = false;
     for (unsigned int it = 0;; ++it)
       {
-        if (!assemble(true, time_new))
+        if (!assembled && !assemble(true, time_new))
           {
             result.failure = material_failure_message();
             return result;
@@ -215,7 +219,7 @@ namespace anvil
         // The first update carries the boundary jump: take it whole.
         // Near convergence (and on the round-off floor) s(α) is noise.
         result.line_search_steps.push_back(
-          line_search(du, (it == 0 && has_jump) || residual_ok, time_new));
+          line_search(du, (it == 0 && has_jump) || residual_ok, time_new, assembled));
       }
   }
 
@@ -278,24 +282,30 @@ namespace anvil
 
   template <int dim>
   double MechanicalProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &du,
-                                            const bool full_step, const double time_new)
+                                            const bool full_step, const double time_new,
+                                            bool &assembled)
   {
     // Line search on the energy norm s(α) = δu · R(u + α δu) (Crisfield):
     // the residual norm itself grows in the first iterations of large
     // rotations although the step is good, so it is a poor merit function.
     // A full step is kept unless |s(1)| > 0.8 |s(0)| or an element inverts;
     // then α follows the secant root of s, within [0.1, 1].
+    // The full step is tried with the matrix: it is kept far more often than
+    // not, and then the next iteration needs K and R at exactly this state.
     const TrilinosWrappers::MPI::Vector u_start = owned_solution;
     double       alpha = 1;
     const double s0    = -(du * system_rhs);
+    assembled          = false;
     for (unsigned int ls = 0;; ++ls)
       {
         owned_solution = u_start;
         owned_solution.add(alpha, du);
-        solution = owned_solution;
+        solution  = owned_solution;
+        assembled = false;
         if (!parameters.line_search || ls == 5 || full_step)
           break;
-        const bool ok = assemble(false, time_new);
+        const bool ok = assemble(ls == 0, time_new);
+        assembled     = ok && ls == 0;
         if (!ok)
           {
             alpha *= 0.5;
@@ -380,7 +390,7 @@ namespace anvil
     double, double, bool);                                                                       \
   template bool   MechanicalProblem<dim>::predict(double, double, bool);                         \
   template double MechanicalProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &,     \
-                                                      bool, double);                             \
+                                                      bool, double, bool &);                     \
   template void   MechanicalProblem<dim>::revert_step();                                          \
   template bool   MechanicalProblem<dim>::begin_step(double, double);                            \
   template bool   MechanicalProblem<dim>::predictor_update(unsigned int &);                      \

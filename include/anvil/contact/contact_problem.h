@@ -177,7 +177,7 @@ namespace anvil
     /**
      * For a Newton over both fields (coupling/monolithic.cc): for every slave
      * node and master face that may touch in this step (this process's
-     * slave nodes), the displacement dofs its heat exchange depends on — the
+     * slave nodes; the step's candidates, not every pair the slide allowed), the displacement dofs its heat exchange depends on — the
      * node, the face's nodes (pressure, slip, projection) and the node's
      * neighbours on its surface (its area) — in @p u_columns, and the
      * temperature dofs it writes (the node, the face's nodes) in @p T_rows.
@@ -269,7 +269,8 @@ namespace anvil
     std::vector<double> gather_node_values(const Vector &v) const;
     /// The seed's characteristic area of a slave node (§3.1, Fig. 2): (L₁ + L₂)/2 with
     /// L₁, L₂ the projections of its two slave segments on the master's tangent,
-    /// each clamped at zero (3D: its facets' quarters projected on the tangent plane).
+    /// each clamped at zero (3D: its facets' quarters projected on the tangent plane;
+    /// axisymmetric: each projection's ring share 2π L (2 r_node + r_other)/6).
     double characteristic_area(unsigned int node, const Surface &surface,
                                const dealii::Tensor<1, dim> &normal) const;
     std::vector<dealii::Point<dim>> x_last; // surface nodes at the last assemble()
@@ -314,8 +315,11 @@ namespace anvil
     double                                 trial_max_penetration = 0;
     std::vector<PairTotals>                pair_totals;
 
-    // Sparsity bookkeeping: allowed (pair, pass, slave node, face) couplings.
-    mutable std::set<std::tuple<unsigned int, unsigned int, unsigned int, unsigned int>> allowed;
+    // Sparsity bookkeeping: allowed (pair, pass, slave node, face) couplings,
+    // ever (the matrix pattern only grows), and those of the current step (the
+    // links of the monolithic scheme's colouring: heat_links()).
+    mutable std::set<std::tuple<unsigned int, unsigned int, unsigned int, unsigned int>> allowed,
+      step_allowed;
     mutable bool grew = false;
 
     // Heat.

@@ -299,8 +299,9 @@ namespace anvil
     bool predict(double time_old, double time_new, bool from_last_solution);
     /// Step length α of the Newton update @p du (Crisfield's energy line
     /// search); leaves the solution at u + α du. @p full_step: α = 1.
+    /// @p assembled: set true if K and R are left assembled at that solution.
     double line_search(const dealii::TrilinosWrappers::MPI::Vector &du, bool full_step,
-                       double time_new);
+                       double time_new, bool &assembled);
     unsigned int solve_linear_system(dealii::TrilinosWrappers::MPI::Vector &du);
     double       residual_norm() const;
     /// 3x3 F from the in-plane gradient (and the hoop stretch if axisymmetric).
