@@ -4,13 +4,14 @@
 # assembly's speed-up on 2 threads.
 #   contrib/bench.sh            # 2D 512x512 (0.5 M DoFs) and 3D 69^3 (1 M DoFs), one process
 #   contrib/bench.sh --small    # quick sizes
-#   contrib/bench.sh --perf [--small]   # issue 15's figures only (contrib/bench/perf.py)
+#   contrib/bench.sh --perf [--small] [--only heat_plate,...]   # issue 15's figures only (contrib/bench/perf.py)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/setup.sh"
 out="${ANVIL_BENCH_DIR:-$ANVIL_BUILD/bench}"
 mkdir -p "$out"
 if [ "${1:-}" = "--perf" ]; then
-  python3 "$ANVIL_ROOT/contrib/bench/perf.py" "$ANVIL_BUILD" "$out" "${2:-}"
+  shift
+  python3 "$ANVIL_ROOT/contrib/bench/perf.py" "$ANVIL_BUILD" "$out" "$@"
   exit 0
 fi
 n2=512; n3=69; n3p=40

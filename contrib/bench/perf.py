@@ -13,7 +13,10 @@ Per scene, one process, one thread:
 and the thermal-only benchmark contrib/bench/heat_plate.prm (15 625 temperature
 unknowns, linear): wall time, ARKode steps, nonlinear iterations, linear solves.
 
-    python3 contrib/bench/perf.py BUILD_DIR OUT_DIR [--small]
+    python3 contrib/bench/perf.py BUILD_DIR OUT_DIR [--small] [--only NAME[,NAME...]]
+
+--only runs the named cases alone (two_blocks, necking_bar_thermal, tube_case3,
+heat_plate), e.g. to repeat one timing on a loaded machine.
 """
 import csv
 import json
@@ -26,6 +29,10 @@ import time
 
 build, out = sys.argv[1], sys.argv[2]
 small = "--small" in sys.argv[3:]
+only = None
+if "--only" in sys.argv[3:-1]:
+    only = set(sys.argv[sys.argv.index("--only") + 1].split(","))
+wanted = lambda name: only is None or name in only
 os.makedirs(out, exist_ok=True)
 root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 anvil = os.path.join(build, "anvil")
@@ -97,6 +104,8 @@ print("%-20s %7s %13s %8s %6s %7s %8s %9s %10s %6s %8s %6s" % (
     "scene", "solver", "process (cpu)", "start-up", "steps", "Newton", "heat/mech", "s/Newton",
     "asm+solve", "ratio", "Krylov/sol", "arkode"))
 for name, scene, sets in cases:
+    if not wanted(name):
+        continue
     s, t, process = run(name, scene, sets)
     if s is None:
         continue
@@ -126,7 +135,7 @@ print("  Krylov/sol: mechanical linear iterations per linear solve (1: direct); 
 # The heat problem alone: 124 x 124 Q1 cells, a boundary temperature jump and
 # convection, linear (contrib/bench/heat_plate.prm).
 plate_sets = ["Time/End time=5"] if small else []
-s, t, process = run("heat_plate", "contrib/bench/heat_plate.prm", plate_sets)
+s, t, process = run("heat_plate", "contrib/bench/heat_plate.prm", plate_sets) if wanted("heat_plate") else (None,) * 3
 if s is not None:
     h = s.get("heat", {})
     rows = bare_rows(os.path.join(out, "perf_heat_plate", "thermal.csv"))

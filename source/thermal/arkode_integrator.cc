@@ -103,7 +103,8 @@ namespace anvil
                                                     std::max(2u, settings.order),
                                                     settings.max_nonlinear_iterations,
                                                     /*implicit_function_is_linear*/ settings.linear,
-                                                    /*implicit_function_is_time_independent*/ false,
+                                                    /*implicit_function_is_time_independent*/
+                                                    settings.linear && settings.jacobian_constant,
                                                     /*mass_is_time_independent*/ true,
                                                     /*anderson_acceleration_subspace*/ 3,
                                                     settings.absolute_tolerance,
@@ -123,6 +124,9 @@ namespace anvil
         return guarded(message, [&] { return system.jacobian_vmult(v, Jv); });
       };
       // γ reaches only the preconditioner setup: build M − γJ there.
+      // γ of the last setup: ARKode's current one (it sets up whenever γ
+      // changes in a linear problem, at every stage otherwise).
+      double setup_gamma = -1;
       ode.jacobian_preconditioner_setup = [&](double t, const Vector &u, const Vector &, int jok,
                                               int &jcur, double gamma) {
         return guarded(message, [&] {
@@ -135,6 +139,7 @@ namespace anvil
               jcur = 1;
             }
           ++stats.linear_setups;
+          setup_gamma = gamma;
           return system.setup_newton_matrix(gamma);
         });
       };
@@ -151,6 +156,16 @@ namespace anvil
                                         Vector &x, const Vector &b, double tol) {
         return guarded(message, [&] {
           ++stats.linear_solves;
+          if (settings.linear && system.newton_matrix_is_exact(setup_gamma))
+            {
+              // The factorisation is of ARKode's own matrix: one solve is the
+              // answer GMRES would reach in one iteration (and one more solve).
+              const int n = system.solve_newton_matrix(x, b);
+              if (n < 0)
+                return 1;
+              stats.linear_iterations += n;
+              return 0;
+            }
           x = 0;
           SolverControl control(200, std::max(tol, 1e-15 * b.l2_norm()));
           SolverGMRES<Vector> gmres(control, SolverGMRES<Vector>::AdditionalData(30, true));

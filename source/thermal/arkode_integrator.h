@@ -33,6 +33,10 @@ namespace anvil
       /// x ≈ (M − γJ)⁻¹ b with the matrix of the last setup_newton_matrix;
       /// returns the number of inner iterations (≥ 1) or a negative error.
       virtual int  solve_newton_matrix(Vector &x, const Vector &b) = 0;
+      /// Whether solve_newton_matrix is (M − γJ)⁻¹ itself, to round-off, for
+      /// this γ and the J of jacobian_vmult (a factorisation of that very
+      /// matrix): then a Newton system is one solve, no Krylov iteration.
+      virtual bool newton_matrix_is_exact(double /*gamma*/) const { return false; }
       virtual int  mass_vmult(const Vector &v, Vector &Mv) = 0;
       /// x = M⁻¹ b to the absolute residual tolerance @p tol.
       virtual int  solve_mass(Vector &x, const Vector &b, double tol) = 0;
@@ -42,6 +46,9 @@ namespace anvil
     {
       unsigned int order                    = 3; // DIRK: 2, 3, 4 or 5; 1: backward Euler
       bool         linear                   = false; // f linear in y: one Newton iteration per stage
+      /// With linear: J = ∂f/∂y does not depend on t, so ARKode sets up the
+      /// Newton matrix only when γ changes, not at every stage.
+      bool         jacobian_constant        = false;
       double       relative_tolerance       = 1e-6;
       double       absolute_tolerance       = 1e-6;
       double       fixed_step_size          = 0; // 0: adaptive

@@ -5,10 +5,11 @@
 // place for both users (thermal_solvers.cc, steady_state.cc).
 
 #include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 
 #include <memory>
+
+#include "klu_factorization.h"
 
 namespace anvil
 {
@@ -16,16 +17,16 @@ namespace anvil
   {
     inline void factorise_newton_matrix(const dealii::TrilinosWrappers::SparseMatrix &matrix,
                                         const bool use_direct, const unsigned int degree,
-                                        dealii::SolverControl &direct_control,
-                                        std::unique_ptr<dealii::TrilinosWrappers::SolverDirect> &direct,
+                                        std::unique_ptr<KluFactorization> &direct,
                                         std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> &amg)
     {
       if (use_direct)
         {
-          direct = std::make_unique<dealii::TrilinosWrappers::SolverDirect>(
-            direct_control,
-            dealii::TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu"));
-          direct->initialize(matrix);
+          // Numeric only while the matrix keeps its object and pattern
+          // (KluFactorization notices a new one and analyses it again).
+          if (!direct)
+            direct = std::make_unique<KluFactorization>();
+          direct->factorize(matrix);
           return;
         }
       dealii::TrilinosWrappers::PreconditionAMG::AdditionalData data;

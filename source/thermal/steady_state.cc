@@ -64,7 +64,7 @@ namespace anvil
 
     delta.reinit(locally_owned_dofs, mpi_communicator);
     thermal::factorise_newton_matrix(newton_matrix, use_direct, parameters.polynomial_degree,
-                                     direct_control, newton_direct, newton_amg);
+                                     newton_direct, newton_amg);
     if (use_direct)
       newton_direct->solve(delta, f);
     else

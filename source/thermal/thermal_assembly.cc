@@ -226,7 +226,19 @@ namespace anvil
         exchange.add_rhs(t, y, rhs);
         rhs.compress(VectorOperation::add);
       }
-    add_prescribed_fluxes(t, rhs);
+    if (loads_vary)
+      add_prescribed_fluxes(t, rhs);
+    else
+      {
+        // Constant fluxes and T∞: one face loop per configuration, not one per evaluation.
+        if (!loads_current)
+          {
+            face_loads.reinit(locally_owned_dofs, mpi_communicator);
+            add_prescribed_fluxes(t, face_loads);
+            loads_current = true;
+          }
+        rhs += face_loads;
+      }
     if (has_dirichlet)
       {
         std::map<types::global_dof_index, double> g_dot;

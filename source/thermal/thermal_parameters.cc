@@ -128,10 +128,13 @@ namespace anvil
             slot = parse(values[0]);
             if (kind == "Temperature")
               b.temperature_varies = names_time(values[0]);
+            if (kind == "Flux")
+              b.flux_varies = names_time(values[0]);
             if (kind == "Convection")
               {
-                b.T_convection = parse(values[1]);
-                b.h_varies     = names_time(values[0]);
+                b.T_convection        = parse(values[1]);
+                b.h_varies            = names_time(values[0]);
+                b.T_convection_varies = names_time(values[1]);
               }
             if (kind == "Radiation")
               b.T_radiation = parse(values[1]);

@@ -15,6 +15,7 @@
 #include <anvil/thermal/thermal_problem.h>
 
 #include "arkode_integrator.h"
+#include "klu_factorization.h"
 
 #include <cmath>
 
@@ -65,6 +66,12 @@ namespace anvil
       return 0;
     }
     int solve_newton_matrix(Vector &x, const Vector &b) override { return p.solve_newton(x, b, 0); }
+    bool newton_matrix_is_exact(const double gamma) const override
+    {
+      // KLU of M + γA with ARKode's γ and every coupling of J in A (the
+      // exchange's off-diagonal couplings are not: they act through GMRES).
+      return p.use_direct && p.current_gamma == gamma && !p.exchange.add_jacobian;
+    }
     int mass_vmult(const Vector &v, Vector &Mv) override
     {
       if (p.parameters.lumped_mass)
@@ -100,7 +107,7 @@ namespace anvil
     , dof_handler(triangulation)
     , quadrature(parameters.polynomial_degree + 1)
     , face_quadrature(parameters.polynomial_degree + 1)
-    , direct_control(1, 0)
+    , newton_direct(std::make_unique<thermal::KluFactorization>())
   {
     initial_function = parse_expression<dim>(parameters.initial_temperature, Scene(), "Heat/Initial temperature");
     if (!parameters.source.empty())
@@ -114,6 +121,8 @@ namespace anvil
         has_convection    = has_convection || b.h;
         convection_varies = convection_varies || (b.h && b.h_varies);
         dirichlet_varies  = dirichlet_varies || (b.temperature && b.temperature_varies);
+        loads_vary        = loads_vary || (b.flux && b.flux_varies) ||
+                     (b.h && (b.h_varies || b.T_convection_varies));
       }
   }
 
@@ -173,12 +182,14 @@ namespace anvil
       v->reinit(locally_owned_dofs, mpi_communicator);
     for (auto *v : {&temperature_ghosted, &old_temperature_ghosted, &scratch_ghosted})
       v->reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+    newton_direct->clear(); // a new pattern
     use_direct = parameters.linear_solver == "direct" ||
                  (parameters.linear_solver == "automatic" &&
                   dof_handler.n_dofs() <= parameters.direct_solver_limit);
     operators_current = false;
     tangent_current   = false;
     couplings_current = false;
+    loads_current     = false;
 
     initial_function->set_time(start_time);
     VectorTools::interpolate(get_mapping(), dof_handler, *initial_function, solution);
@@ -210,9 +221,10 @@ namespace anvil
     configuration = displacement_ghosted;
     current_mapping = std::make_unique<MappingQEulerian<dim, Vector>>(
       mechanics_dofs.get_fe().degree, mechanics_dofs, configuration);
-    operators_current = false;
-    tangent_current   = false;
-    couplings_current = false;
+    // Conduction and the face loads live on the current configuration; M and
+    // M_fD on the reference one (ρ dv = ρ₀ dV) stay as they are.
+    tangent_current = false;
+    loads_current   = false;
   }
 
   template <int dim>
@@ -261,6 +273,7 @@ namespace anvil
     settings.max_nonlinear_iterations = parameters.max_nonlinear_iterations;
     settings.initial_step_size        = last_internal_step;
     settings.linear                   = linear;
+    settings.jacobian_constant        = !convection_varies;
     Ode        ode(*this);
     const auto s = thermal::integrate(ode, y, time_old, time_new, settings);
 
@@ -359,6 +372,7 @@ namespace anvil
     operators_current       = false;
     tangent_current         = false;
     couplings_current       = false;
+    loads_current           = false;
   }
 
   template <int dim>

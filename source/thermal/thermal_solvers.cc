@@ -46,7 +46,7 @@ namespace anvil
         newton_matrix.compress(VectorOperation::add);
       }
     thermal::factorise_newton_matrix(newton_matrix, use_direct, parameters.polynomial_degree,
-                                     direct_control, newton_direct, newton_amg);
+                                     newton_direct, newton_amg);
     current_gamma = gamma;
   }
 

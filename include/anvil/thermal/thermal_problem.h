@@ -29,6 +29,10 @@
 namespace anvil
 {
   class Scene;
+  namespace thermal
+  {
+    class KluFactorization;
+  }
   template <int dim>
   class Geometry;
 
@@ -85,6 +89,9 @@ namespace anvil
       /// time (its formula names t; true unless parse_parameters knows better).
       /// Constant ones let a linear problem keep K and skip ġ (linear_residual).
       bool temperature_varies = true, h_varies = true;
+      /// Likewise the prescribed flux and the convection's T∞: constant ones
+      /// give a load assembled once per configuration.
+      bool flux_varies = true, T_convection_varies = true;
     };
 
     /// Declares `subsection Boundary conditions` inside the current subsection (Heat).
@@ -414,13 +421,15 @@ namespace anvil
     dealii::TrilinosWrappers::SparseMatrix mass_matrix, tangent_matrix, newton_matrix;
     Vector lumped_mass, mass_diagonal;
     std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG>    newton_amg;
-    std::unique_ptr<dealii::TrilinosWrappers::SolverDirect>       newton_direct;
-    dealii::SolverControl                                         direct_control;
+    /// KLU of M + γA, its symbolic analysis kept while the pattern is (source/thermal/klu_factorization.h).
+    std::unique_ptr<thermal::KluFactorization>                    newton_direct;
     dealii::TrilinosWrappers::PreconditionJacobi                  mass_jacobi;
     bool   operators_current = false, use_direct = true, linear = true;
     bool   tangent_current = false, has_convection = false; // tangent assembled for this configuration
     bool   sources_current = false;                         // step_sources assembled for this step
     bool   couplings_current = false;                       // dirichlet_* for this configuration
+    bool   loads_current = false, loads_vary = false;      // face_loads for this configuration; some flux(t), T∞(t)
+    Vector face_loads;                                      // constant fluxes and h T∞ (fast linear path)
     bool   convection_varies = false, dirichlet_varies = false; // some h(t), some g(t)
     /// The columns of the Dirichlet dofs that the constrained K and M drop:
     /// f_free = −K y − K_fD y_D − M_fD ġ_D + F (the slow path's cell integrals).
