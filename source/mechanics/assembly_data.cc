@@ -36,6 +36,7 @@ namespace anvil
       , cell_mass(fe.n_dofs_per_cell(), fe.n_dofs_per_cell())
       , face_grad_u(face_quadrature.size())
       , face_u(face_quadrature.size())
+      , face_d_nda(fe.n_dofs_per_cell())
     {}
 
     template <int dim>

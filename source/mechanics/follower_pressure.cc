@@ -42,27 +42,37 @@ namespace anvil
                                                        scratch.face_u[q][0]) :
                                                     1.;
                     const double JxW = fe_face_values.JxW(q);
+                    // Per column j, δ(n da) for every row component: it does not
+                    // depend on the row, so it is computed once, not once per (i, j).
+                    if (context.with_matrix)
+                      for (unsigned int j = 0; j < n_dofs; ++j)
+                        {
+                          const unsigned int   cj = component[j];
+                          const Tensor<1, dim> g  = fe_face_values.shape_grad_component(j, q, cj);
+                          double tr = 0; // tr(F⁻¹ δF) with δF = e_cj ⊗ g
+                          for (unsigned int m = 0; m < dim; ++m)
+                            tr += F_inv[m][cj] * g[m];
+                          const Tensor<1, dim> FiT_g = transpose(F_inv) * g;
+                          for (unsigned int c = 0; c < dim; ++c)
+                            {
+                              double d_nda = r * J * (tr * FiT_N[c] - FiT_g[c] * FiT_N[cj]);
+                              if (axisymmetric && cj == 0) // δr = N_j
+                                d_nda += 2 * numbers::PI * fe_face_values.shape_value(j, q) * J *
+                                         FiT_N[c];
+                              scratch.face_d_nda[j][c] = d_nda;
+                            }
+                        }
                     for (unsigned int i = 0; i < n_dofs; ++i)
                       {
+                        const double Ni = fe_face_values.shape_value(i, q);
+                        if (Ni == 0) // not a dof of this face: a row of zeros
+                          continue;
                         const unsigned int ci = component[i];
-                        const double       Ni = fe_face_values.shape_value(i, q);
                         copy.external(i) -= p * r * J * FiT_N[ci] * Ni * JxW;
                         if (context.with_matrix)
                           for (unsigned int j = 0; j < n_dofs; ++j)
-                            {
-                              const unsigned int   cj = component[j];
-                              const Tensor<1, dim> g = fe_face_values.shape_grad_component(j, q, cj);
-                              double tr = 0; // tr(F⁻¹ δF) with δF = e_cj ⊗ g
-                              for (unsigned int m = 0; m < dim; ++m)
-                                tr += F_inv[m][cj] * g[m];
-                              const Tensor<1, dim> FiT_g = transpose(F_inv) * g;
-                              double d_nda = r * J * (tr * FiT_N[ci] - FiT_g[ci] * FiT_N[cj]);
-                              if (axisymmetric && cj == 0) // δr = N_j
-                                d_nda += 2 * numbers::PI * fe_face_values.shape_value(j, q) * J *
-                                         FiT_N[ci];
-                              // K = ∂f_int/∂u − ∂f_ext/∂u
-                              copy.matrix(i, j) += p * d_nda * Ni * JxW;
-                            }
+                            // K = ∂f_int/∂u − ∂f_ext/∂u
+                            copy.matrix(i, j) += p * scratch.face_d_nda[j][ci] * Ni * JxW;
                       }
                   }
               }

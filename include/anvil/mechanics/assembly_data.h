@@ -133,6 +133,7 @@ namespace anvil
       dealii::FullMatrix<double>          cell_mass; // inertia
       std::vector<dealii::Tensor<2, dim>> face_grad_u;
       std::vector<dealii::Tensor<1, dim>> face_u;
+      std::vector<dealii::Tensor<1, dim>> face_d_nda; // follower pressure: δ(n da) per column
     };
 
     /// The energy audit's terms at a point over a step (doc/energy_audit.md), N mm.
