@@ -1,5 +1,5 @@
 // The heat solver's KLU that keeps its analysis and pivot sequence
-// (source/thermal/klu_factorization.h) solves every matrix it is given, not
+// (include/anvil/core/klu_factorization.h) solves every matrix it is given, not
 // the first one: the Newton matrix M + γK of a 2D Q1-like 9-point operator
 // (nonsymmetric, as anvil's with its kept Dirichlet columns) is factorised
 // for γ = 1e-3, 1, 1e3 (the mass-dominated and the conduction-dominated
@@ -16,7 +16,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
-#include "../source/thermal/klu_factorization.h"
+#include <anvil/core/klu_factorization.h>
 
 #include <cmath>
 #include <iostream>
@@ -47,7 +47,7 @@ int main(int argc, char **argv)
   TrilinosWrappers::SparseMatrix A;
   A.reinit(owned, owned, dsp, comm);
 
-  anvil::thermal::KluFactorization klu;
+  anvil::KluFactorization klu;
   int failures = 0;
   for (const double gamma : {1e-3, 1., 1e3})
     {

@@ -192,6 +192,7 @@ namespace anvil
   template <int dim>
   void MechanicalProblem<dim>::setup_matrix()
   {
+    direct_solver.clear(); // a new pattern: analyse it again
     // Contact couples dofs of different cells (a slave node with the nodes of
     // the master face below it), possibly owned by other processes: their
     // rows enter the pattern here and go to their owners.

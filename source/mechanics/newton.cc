@@ -51,11 +51,10 @@ namespace anvil
                          dof_handler.n_dofs() <= parameters.direct_solver_limit);
     if (direct)
       {
-        SolverControl                  control(1, 0);
-        TrilinosWrappers::SolverDirect solver(control,
-                                              TrilinosWrappers::SolverDirect::AdditionalData(
-                                                false, "Amesos_Klu"));
-        solver.solve(system_matrix, du, system_rhs);
+        // The ordering depends on the pattern only: kept across iterations
+        // and steps until setup_matrix() makes a new one.
+        direct_solver.factorize(system_matrix);
+        direct_solver.solve(du, system_rhs);
         return 1;
       }
     TrilinosWrappers::PreconditionAMG                 amg;

@@ -9,7 +9,7 @@
 
 #include <memory>
 
-#include "klu_factorization.h"
+#include <anvil/core/klu_factorization.h>
 
 namespace anvil
 {

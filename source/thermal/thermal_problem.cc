@@ -15,7 +15,7 @@
 #include <anvil/thermal/thermal_problem.h>
 
 #include "arkode_integrator.h"
-#include "klu_factorization.h"
+#include <anvil/core/klu_factorization.h>
 
 #include <cmath>
 
@@ -107,7 +107,7 @@ namespace anvil
     , dof_handler(triangulation)
     , quadrature(parameters.polynomial_degree + 1)
     , face_quadrature(parameters.polynomial_degree + 1)
-    , newton_direct(std::make_unique<thermal::KluFactorization>())
+    , newton_direct(std::make_unique<KluFactorization>())
   {
     initial_function = parse_expression<dim>(parameters.initial_temperature, Scene(), "Heat/Initial temperature");
     if (!parameters.source.empty())

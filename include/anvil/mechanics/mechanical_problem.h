@@ -13,6 +13,7 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <anvil/core/klu_factorization.h>
 #include <anvil/core/named_values.h>
 #include <anvil/core/point_data.h>
 #include <anvil/material/material_point.h>
@@ -350,6 +351,9 @@ namespace anvil
     const dealii::AffineConstraints<double> *active_constraints = &constraints;
 
     dealii::TrilinosWrappers::SparseMatrix system_matrix;
+    /// KLU of system_matrix, its symbolic analysis kept while the pattern is
+    /// (pivoting anew each time: the answers of a fresh solver).
+    KluFactorization direct_solver{false};
     dealii::TrilinosWrappers::MPI::Vector  system_rhs;          // −R, constrained entries 0
     dealii::TrilinosWrappers::MPI::Vector  internal_force;      // f_int, all entries
     dealii::TrilinosWrappers::MPI::Vector  internal_force_old;

@@ -29,10 +29,7 @@
 namespace anvil
 {
   class Scene;
-  namespace thermal
-  {
-    class KluFactorization;
-  }
+  class KluFactorization;
   template <int dim>
   class Geometry;
 
@@ -421,8 +418,8 @@ namespace anvil
     dealii::TrilinosWrappers::SparseMatrix mass_matrix, tangent_matrix, newton_matrix;
     Vector lumped_mass, mass_diagonal;
     std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG>    newton_amg;
-    /// KLU of M + γA, its symbolic analysis kept while the pattern is (source/thermal/klu_factorization.h).
-    std::unique_ptr<thermal::KluFactorization>                    newton_direct;
+    /// KLU of M + γA, its symbolic analysis kept while the pattern is (core/klu_factorization.h).
+    std::unique_ptr<KluFactorization>                            newton_direct;
     dealii::TrilinosWrappers::PreconditionJacobi                  mass_jacobi;
     bool   operators_current = false, use_direct = true, linear = true;
     bool   tangent_current = false, has_convection = false; // tangent assembled for this configuration
