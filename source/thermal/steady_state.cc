@@ -10,6 +10,7 @@
 #include <deal.II/lac/solver_gmres.h>
 
 #include <anvil/core/instantiate.h>
+#include <anvil/thermal/kernels.h>
 #include <anvil/thermal/thermal_problem.h>
 
 #include "newton_factorisation.h"
@@ -167,10 +168,9 @@ namespace anvil
   }
 
   template <int dim>
-  double ThermalProblem<dim>::dirichlet_heat_flow(const double t, const Vector &T) const
+  double ThermalProblem<dim>::dirichlet_heat_flow(const Vector &T) const
   {
     // Heat into the body through a face: -q . n = k(T) grad T . n (n outward).
-    (void)t;
     FEFaceValues<dim> fe_face(get_mapping(), fe, face_quadrature,
                               update_values | update_gradients | update_normal_vectors |
                                 update_JxW_values | update_quadrature_points);
@@ -191,7 +191,7 @@ namespace anvil
               const auto &m = materials.at(cell->material_id());
               for (unsigned int q = 0; q < face_quadrature.size(); ++q)
                 power += m.k(T_f[q]) * (grad_T[q] * fe_face.normal_vector(q)) * fe_face.JxW(q) *
-                         (parameters.axisymmetric ? 2 * numbers::PI * fe_face.quadrature_point(q)[0] : 1.);
+                         thermal::ring_factor(fe_face.quadrature_point(q), parameters.axisymmetric);
             }
     return Utilities::MPI::sum(power, mpi_communicator);
   }
@@ -202,7 +202,7 @@ namespace anvil
     SteadyBalance b;
     b.boundary      = boundary_flows(t, temperature_ghosted);
     b.source        = source_power(t);
-    b.dirichlet     = dirichlet_heat_flow(t, temperature_ghosted);
+    b.dirichlet     = dirichlet_heat_flow(temperature_ghosted);
     double sum      = b.source + b.dirichlet;
     double largest  = std::max(std::abs(b.source), std::abs(b.dirichlet));
     for (const auto &[id, q] : b.boundary)

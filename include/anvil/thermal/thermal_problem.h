@@ -389,7 +389,7 @@ namespace anvil
     /// Steady state: solve A delta = f, A the tangent with unit Temperature and hanging rows.
     void   steady_linear_solve(double t, const Vector &T, const Vector &f, Vector &delta);
     /// Heat into the bodies through the Temperature boundaries, k grad T . n (mW).
-    double dirichlet_heat_flow(double t, const Vector &T_ghosted) const;
+    double dirichlet_heat_flow(const Vector &T_ghosted) const;
 
     MPI_Comm                                                 mpi_communicator;
     const dealii::parallel::distributed::Triangulation<dim> &triangulation;
