@@ -3,6 +3,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <anvil/core/expression.h>
+#include <anvil/core/first_message.h>
 #include <anvil/core/scene.h>
 #include <anvil/coupling/interface.h>
 
@@ -66,11 +67,8 @@ namespace anvil
       temperature->set_time(0);
       const MPI_Comm comm = tria.get_communicator();
       throw_recorded_input_error(comm); // NaN or inf: named with where and when
-      const unsigned int n = Utilities::MPI::n_mpi_processes(comm);
-      const unsigned int first =
-        Utilities::MPI::min(problem.empty() ? n : Utilities::MPI::this_mpi_process(comm), comm);
-      if (first < n)
-        scene.fail("Physics/Prescribed temperature", Utilities::MPI::broadcast(comm, problem, first));
+      if (const std::string first = first_message(problem, comm); !first.empty())
+        scene.fail("Physics/Prescribed temperature", first);
     }
 
     void initialize(CoupledProblem<dim> &p) override

@@ -2,6 +2,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <anvil/core/expression.h>
+#include <anvil/core/first_message.h>
 #include <anvil/core/input_error.h>
 #include <anvil/core/instantiate.h>
 #include <anvil/core/scene.h>
@@ -101,11 +102,8 @@ namespace anvil
     // A formula that gave NaN or inf says so itself, with where and when.
     const MPI_Comm comm = tria.get_communicator();
     throw_recorded_input_error(comm);
-    const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(comm);
-    const unsigned int first =
-      Utilities::MPI::min(problem.empty() ? n_ranks : Utilities::MPI::this_mpi_process(comm), comm);
-    if (first < n_ranks)
-      throw InputError(Utilities::MPI::broadcast(comm, problem, first));
+    if (const std::string first = first_message(problem, comm); !first.empty())
+      throw InputError(first);
   }
 
   ANVIL_INSTANTIATE_CLASS(CoupledProblem)

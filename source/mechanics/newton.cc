@@ -9,6 +9,7 @@
 #include <deal.II/lac/trilinos_solver.h>
 
 #include <anvil/contact/contact_problem.h>
+#include <anvil/core/first_message.h>
 #include <anvil/core/instantiate.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
@@ -24,16 +25,8 @@ namespace anvil
   std::string MechanicalProblem<dim>::material_failure_message() const
   {
     // The first rank that failed tells (all ranks return the same text).
-    const unsigned int rank  = Utilities::MPI::this_mpi_process(mpi_communicator);
-    const unsigned int first = Utilities::MPI::min(material_failure.empty() ?
-                                                     Utilities::MPI::n_mpi_processes(mpi_communicator) :
-                                                     rank,
-                                                   mpi_communicator);
-    if (first == Utilities::MPI::n_mpi_processes(mpi_communicator))
-      return "an element inverted (J <= 0)";
-    std::vector<char> text(material_failure.begin(), material_failure.end());
-    text = Utilities::MPI::broadcast(mpi_communicator, text, first);
-    return std::string(text.begin(), text.end());
+    const std::string first = first_message(material_failure, mpi_communicator);
+    return first.empty() ? "an element inverted (J <= 0)" : first;
   }
 
   template <int dim>
