@@ -3,10 +3,6 @@
 // of the tangent.
 #include <deal.II/base/utilities.h>
 #include <deal.II/dofs/dof_tools.h>
-#include <deal.II/lac/solver_control.h>
-#include <deal.II/lac/solver_gmres.h>
-#include <deal.II/lac/trilinos_precondition.h>
-#include <deal.II/lac/trilinos_solver.h>
 
 #include <anvil/contact/contact_problem.h>
 #include <anvil/core/first_message.h>
@@ -33,41 +29,6 @@ namespace anvil
   double MechanicalProblem<dim>::residual_norm() const
   {
     return system_rhs.l2_norm();
-  }
-
-  template <int dim>
-  unsigned int MechanicalProblem<dim>::solve_linear_system(TrilinosWrappers::MPI::Vector &du)
-  {
-    TimerOutput::Scope t(timer, "Mechanics: linear solve");
-    const bool direct = parameters.linear_solver == "direct" ||
-                        (parameters.linear_solver == "automatic" &&
-                         dof_handler.n_dofs() <= parameters.direct_solver_limit);
-    if (direct)
-      {
-        // The ordering depends on the pattern only: kept across iterations
-        // and steps until setup_matrix() makes a new one.
-        direct_solver.factorize(system_matrix);
-        direct_solver.solve(du, system_rhs);
-        return 1;
-      }
-    TrilinosWrappers::PreconditionAMG                 amg;
-    TrilinosWrappers::PreconditionAMG::AdditionalData data;
-    std::vector<std::vector<bool>>                    constant_modes;
-    DoFTools::extract_constant_modes(dof_handler, ComponentMask(dim, true), constant_modes);
-    data.constant_modes        = constant_modes;
-    data.elliptic              = true;
-    data.higher_order_elements = parameters.polynomial_degree > 1;
-    data.smoother_sweeps       = 2;
-    data.aggregation_threshold = 0.02;
-    amg.initialize(system_matrix, data);
-    SolverControl control(parameters.linear_max_iterations,
-                          parameters.linear_tolerance * system_rhs.l2_norm());
-    // Restart 30: AMG converges in 10–40 iterations here, and each Krylov
-    // vector costs 8 bytes per DoF (100 would be 800 B/DoF).
-    SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
-      control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(30));
-    gmres.solve(system_matrix, du, system_rhs, amg);
-    return control.last_step();
   }
 
   template <int dim>
@@ -375,8 +336,6 @@ namespace anvil
 #define INSTANTIATE(dim)                                                                         \
   template std::string  MechanicalProblem<dim>::material_failure_message() const;                \
   template double       MechanicalProblem<dim>::residual_norm() const;                           \
-  template unsigned int MechanicalProblem<dim>::solve_linear_system(                             \
-    TrilinosWrappers::MPI::Vector &);                                                            \
   template double MechanicalProblem<dim>::tangent_error();                                       \
   template typename MechanicalProblem<dim>::StepResult MechanicalProblem<dim>::solve_step(       \
     double, double, bool);                                                                       \

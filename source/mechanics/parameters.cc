@@ -5,8 +5,10 @@
 #include <anvil/core/expression.h>
 #include <anvil/core/instantiate.h>
 #include <anvil/core/scene.h>
+#include <anvil/mechanics/linear_solver.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
+#include <stdexcept>
 #include <string>
 
 namespace anvil
@@ -87,8 +89,12 @@ namespace anvil
                       "Relative tolerance of the iterative solver (dimensionless).");
     prm.declare_entry("Maximum iterations", "1000", Patterns::Integer(1),
                       "Iterations of the iterative solver before the step is cut back.");
-    prm.declare_entry("Direct solver limit", "200000", Patterns::Integer(0),
-                      "Number of DoFs up to which 'automatic' chooses the direct solver.");
+    prm.declare_entry("Direct solver limit", "measured", Patterns::Anything(),
+                      "Number of DoFs up to which 'automatic' chooses the direct solver; measured: "
+                      "where KLU and GMRES + AMG cost the same per Newton iteration on the plastic "
+                      "F-bar benchmark, " + std::to_string(measured_direct_solver_limit(2)) +
+                        " in 2D, " + std::to_string(measured_direct_solver_limit(3)) +
+                        " in 3D (contrib/bench/solver_scaling.py, doc/linear_solver.md).");
     prm.leave_subsection();
     prm.leave_subsection();
   }
@@ -162,7 +168,23 @@ namespace anvil
     linear_solver         = prm.get("Type");
     linear_tolerance      = prm.get_double("Tolerance");
     linear_max_iterations = prm.get_integer("Maximum iterations");
-    direct_solver_limit   = prm.get_integer("Direct solver limit");
+    const std::string limit = prm.get("Direct solver limit");
+    if (limit == "measured")
+      direct_solver_limit = measured_direct_solver_limit(dim);
+    else
+      try
+        {
+          std::size_t used = 0;
+          const long  n    = std::stol(limit, &used);
+          if (used != limit.size() || n < 0)
+            throw std::invalid_argument(limit);
+          direct_solver_limit = n;
+        }
+      catch (const std::exception &)
+        {
+          scene.fail("Mechanics/Linear solver/Direct solver limit",
+                     "= '" + limit + "': expected a number of DoFs >= 0 or 'measured'");
+        }
     prm.leave_subsection();
     prm.leave_subsection();
     if (f_bar && polynomial_degree != 1)

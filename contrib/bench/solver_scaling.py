@@ -1,0 +1,150 @@
+#!/usr/bin/env python3
+"""Benchmark (prints, asserts nothing): the mechanics' linear solvers against
+problem size (issue 15, "Solvers that scale").
+
+Per case and size, one run of anvil on one core (DEAL_II_NUM_THREADS=1,
+--threads 1) with Mechanics/Linear solver/Type = iterative (GMRES + AMG on
+the rigid-body modes, tolerance 1e-8) and, up to a size per case, = direct
+(KLU): Krylov iterations per linear solve, Newton iterations, the time per
+Newton iteration (assembly + linear solve, from summary.json's phases: wall
+times of the process, which scatter under load) and the process's user CPU
+seconds. The last table fits t = a N^p per solver (time per Newton iteration
+against DoFs) and prints where direct and iterative cross.
+
+Cases:
+  2d    plastic F-bar block (contrib/bench/elastic_block.prm with the J2 sets of
+        contrib/bench.sh), n x n cells, n = 64 .. 512
+  3d    the same in 3D, n^3 cells, n = 10 .. 40 (69: 1 M DoFs, with --large)
+  strip contact: contrib/bench/contact_strip.prm, n cells along the upper strip
+
+Usage: solver_scaling.py BUILD_DIR OUT_DIR [--small] [--large] [--cases 2d,3d,strip]
+       [--solvers iterative,direct] [--sizes '2d:64,128;3d:10'] [--np 2]
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+J2 = ["Mechanics/Element=F-bar", "Bodies/body/Material/Model=J2",
+      "Bodies/body/Material/Hardening/Initial yield stress=300",
+      "Bodies/body/Material/Hardening/Hardening modulus=1000"]
+# Direct solves above these sizes take minutes each (3D: fill-in).
+DIRECT_LIMIT = {"2d": 512, "3d": 30, "strip": 100000}
+
+
+def case_sets(case, n):
+    if case == "2d":
+        return "contrib/bench/elastic_block.prm", ["Dimension=2", "Geometry/Blocks=body: 0, 0, 1, 1, %d, %d" % (n, n)] + J2
+    if case == "3d":
+        return "contrib/bench/elastic_block.prm", [
+            "Dimension=3", "Geometry/Blocks=body: 0, 0, 0, 1, 1, 1, %d, %d, %d" % (n, n, n),
+            "Boundary conditions/Displacement=front: ux = 0, uy = 0, uz = 0; back: uz = -0.05*t"] + J2
+    length = n / 100  # square cells of 0.01 mm, as contrib/bench.sh
+    return "contrib/bench/contact_strip.prm", [
+        "Geometry/Blocks=lower: 0, 0, %g, 0.02, %d, 2; upper: 0, 0.02, %g, 0.04, %d, 2" % (length, n - 1, length, n),
+        "Boundary conditions/Displacement=lower.bottom: ux = 0, uy = 0; upper.left: ux = 0",
+        "Mechanics/Linear solver/Tolerance=1e-8"]
+
+
+def run(build, out, case, n, solver, np):
+    scene, sets = case_sets(case, n)
+    name = "%s_%d_%s_np%d" % (case, n, solver, np)
+    directory = os.path.join(out, name)
+    sets = sets + ["Mechanics/Linear solver/Type=" + solver, "Output/Directory=" + directory]
+    cmd = ["/usr/bin/time", "-f", "%U", "-o", directory + ".time"]
+    if np > 1:
+        cmd += ["mpirun", "--oversubscribe", "-np", str(np)]
+    cmd += [os.path.join(build, "anvil"), os.path.join(ROOT, scene), "--threads", "1"]
+    for s in sets:
+        cmd += ["--set", s]
+    env = dict(os.environ, DEAL_II_NUM_THREADS="1", OMPI_ALLOW_RUN_AS_ROOT="1",
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    with open(directory + ".log", "w") as log:
+        subprocess.run(cmd, stdout=log, stderr=subprocess.STDOUT, env=env)
+    try:
+        s = json.load(open(os.path.join(directory, "summary.json")))
+        user = float(open(directory + ".time").read().split()[-1])
+    except (OSError, ValueError):
+        return None
+    w = s["wall_time_per_phase"]
+    newton = max(1, s["newton_iterations"])
+    r = dict(case=case, n=n, solver=solver, np=np, dofs=s["dofs"], status=s["status"], newton=s["newton_iterations"],
+             krylov=s["linear_iterations"] / newton, user=user, memory=s["memory_per_dof_bytes"],
+             per_newton=(w.get("Mechanics: assembly", 0) + w.get("Mechanics: linear solve", 0)) / newton,
+             solve=w.get("Mechanics: linear solve", 0) / newton, assembly=w.get("Mechanics: assembly", 0) / newton)
+    print("%-5s %5d %-9s %3d %9d %9s %7d %9.1f %10.3f %10.3f %10.3f %9.1f %8.0f" % (
+        case, n, solver, np, r["dofs"], r["status"][:9], r["newton"], r["krylov"], r["assembly"], r["solve"],
+        r["per_newton"], r["user"], r["memory"]), flush=True)
+    return r
+
+
+def fit(rows):
+    """Least-squares t = a N^p on log-log."""
+    if len(rows) < 2:
+        return None
+    x = [math.log(r["dofs"]) for r in rows]
+    y = [math.log(r["per_newton"]) for r in rows]
+    mx, my = sum(x) / len(x), sum(y) / len(y)
+    p = sum((a - mx) * (b - my) for a, b in zip(x, y)) / sum((a - mx) ** 2 for a in x)
+    return p, math.exp(my - p * mx)
+
+
+def main():
+    args = sys.argv[1:]
+    if len(args) < 2:
+        sys.exit(__doc__)
+    build, out = args[0], args[1]
+    os.makedirs(out, exist_ok=True)
+    small, large = "--small" in args, "--large" in args
+    cases = ["2d", "3d", "strip"]
+    solvers = ["iterative", "direct"]
+    np = 1
+    for i, a in enumerate(args):
+        if a == "--cases":
+            cases = args[i + 1].split(",")
+        if a == "--solvers":
+            solvers = args[i + 1].split(",")
+        if a == "--np":
+            np = int(args[i + 1])
+    sizes = {"2d": [64, 128, 256, 512], "3d": [10, 20, 30, 40] + ([69] if large else []),
+             "strip": [1000, 4000, 16000]}
+    if small:
+        sizes = {"2d": [32, 64], "3d": [6, 10], "strip": [500, 1000]}
+    for i, a in enumerate(args):
+        if a == "--sizes":  # e.g. 2d:64,128;3d:10
+            for item in args[i + 1].split(";"):
+                case, ns = item.split(":")
+                sizes[case] = [int(n) for n in ns.split(",")]
+    print("%-5s %5s %-9s %3s %9s %9s %7s %9s %10s %10s %10s %9s %8s" % (
+        "case", "n", "solver", "np", "DoFs", "status", "Newton", "Krylov/sv", "asm s/it", "solve s/it",
+        "s/Newton", "user s", "B/DoF"))
+    results = []
+    for case in cases:
+        for n in sizes[case]:
+            for solver in solvers:
+                if solver == "direct" and n > DIRECT_LIMIT[case]:
+                    continue
+                r = run(build, out, case, n, solver, np)
+                if r:
+                    results.append(r)
+    print("columns: Krylov/sv GMRES iterations per linear solve (direct: 1); asm, solve s/it: wall seconds per")
+    print("         Newton iteration of 'Mechanics: assembly' and 'Mechanics: linear solve'; s/Newton their sum;")
+    print("         user s: CPU seconds of the whole process; B/DoF: peak memory per DoF")
+    for case in cases:
+        fits = {}
+        for solver in solvers:
+            rows = [r for r in results if r["case"] == case and r["solver"] == solver and r["status"] == "completed"]
+            f = fit(rows)
+            if f:
+                fits[solver] = f
+                print("%-5s %-9s time per Newton iteration ~ N^%.2f over %d .. %d DoFs" % (
+                    case, solver, f[0], rows[0]["dofs"], rows[-1]["dofs"]))
+        if len(fits) == 2 and abs(fits["direct"][0] - fits["iterative"][0]) > 1e-3:
+            (pd, ad), (pi, ai) = fits["direct"], fits["iterative"]
+            print("%-5s direct and iterative cross at about %.0f DoFs (the fits)" % (case, (ai / ad) ** (1 / (pd - pi))))
+
+
+if __name__ == "__main__":
+    main()

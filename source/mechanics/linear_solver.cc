@@ -1,0 +1,97 @@
+// The linear solve of a Newton iteration of MechanicalProblem: sparse LU or
+// GMRES with smoothed-aggregation AMG on the rigid-body modes.
+#include <deal.II/base/utilities.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/trilinos_precondition.h>
+
+#include <anvil/core/instantiate.h>
+#include <anvil/mechanics/linear_solver.h>
+#include <anvil/mechanics/mechanical_problem.h>
+
+DEAL_II_DISABLE_EXTRA_DIAGNOSTICS
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
+DEAL_II_ENABLE_EXTRA_DIAGNOSTICS
+
+namespace anvil
+{
+  using namespace dealii;
+
+  unsigned int solve_gmres_amg(const TrilinosWrappers::SparseMatrix   &K,
+                               TrilinosWrappers::MPI::Vector          &x,
+                               const TrilinosWrappers::MPI::Vector    &b,
+                               const std::vector<std::vector<double>> &near_null_space,
+                               const IterativeSolverSettings          &settings)
+  {
+    TrilinosWrappers::PreconditionAMG::AdditionalData data;
+    data.elliptic              = true; // smoothed aggregation, Chebyshev smoother
+    data.higher_order_elements = settings.higher_order;
+    data.smoother_sweeps       = 4;
+    data.aggregation_threshold = 0.02;
+    Teuchos::ParameterList              list;
+    std::unique_ptr<Epetra_MultiVector> unused; // deal.II's boolean modes: none given
+    data.set_parameters(list, unused, K);
+
+    // ML reads the modes (copied into its hierarchy) during initialize().
+    const Epetra_Map  &map = K.trilinos_matrix().OperatorDomainMap();
+    Epetra_MultiVector modes(map, std::max<int>(1, near_null_space.size()));
+    for (unsigned int k = 0; k < near_null_space.size(); ++k)
+      {
+        AssertDimension(near_null_space[k].size(), static_cast<std::size_t>(map.NumMyElements()));
+        std::copy(near_null_space[k].begin(), near_null_space[k].end(), modes[k]);
+      }
+    if (!near_null_space.empty())
+      {
+        list.set("null space: type", "pre-computed");
+        list.set("null space: dimension", static_cast<int>(near_null_space.size()));
+        list.set("null space: vectors", modes.Values());
+      }
+    // Aggregate nodes, not dofs: a node's components move together in
+    // every mode, and splitting them would cut the modes apart.
+    list.set("PDE equations", static_cast<int>(settings.components));
+    TrilinosWrappers::PreconditionAMG amg;
+    amg.initialize(K, list);
+
+    SolverControl control(settings.max_iterations, settings.tolerance * b.l2_norm());
+    // Right preconditioning: the test is on the true residual |b − K x|
+    // (left preconditioning would test |P⁻¹(b − K x)|, in mm, against a
+    // tolerance in N). Restart 30: each Krylov vector costs 8 B per DoF.
+    SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+      control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(30, true));
+    gmres.solve(K, x, b, amg);
+    return control.last_step();
+  }
+
+  template <int dim>
+  unsigned int MechanicalProblem<dim>::solve_linear_system(TrilinosWrappers::MPI::Vector &du)
+  {
+    TimerOutput::Scope t(timer, "Mechanics: linear solve");
+    const bool direct = parameters.linear_solver == "direct" ||
+                        (parameters.linear_solver == "automatic" &&
+                         dof_handler.n_dofs() <= parameters.direct_solver_limit);
+    if (direct)
+      {
+        // The ordering depends on the pattern only: kept across iterations
+        // and steps until setup_matrix() makes a new one.
+        direct_solver.factorize(system_matrix);
+        direct_solver.solve(du, system_rhs);
+        return 1;
+      }
+    // The modes of the current configuration x = X + u (near-null for the
+    // tangent at u; exact for the unloaded body).
+    const RigidBodyModes    modes = rigid_body_modes(mapping, dof_handler, &solution);
+    IterativeSolverSettings settings;
+    settings.tolerance      = parameters.linear_tolerance;
+    settings.max_iterations = parameters.linear_max_iterations;
+    settings.higher_order   = parameters.polynomial_degree > 1;
+    settings.components     = modes.node_blocks ? dim : 1;
+    return solve_gmres_amg(system_matrix, du, system_rhs, modes.modes, settings);
+  }
+
+#define INSTANTIATE(dim)                                                                      \
+  template unsigned int MechanicalProblem<dim>::solve_linear_system(                          \
+    TrilinosWrappers::MPI::Vector &);
+  ANVIL_INSTANTIATE(INSTANTIATE)
+#undef INSTANTIATE
+} // namespace anvil
