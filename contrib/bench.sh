@@ -257,6 +257,12 @@ python3 "$ANVIL_ROOT/contrib/bench/compare_walltimes.py" "$ANVIL_BUILD"
 start=$(date +%s.%N)
 (cd "$ANVIL_BUILD" && ctest -L regression -j2 > "$out/regression.log" 2>&1) || echo "regression layer: FAILED (see $out/regression.log)"
 echo "regression layer: $(grep -c 'Passed' "$out/regression.log") cases, $(python3 -c "import sys; print(round(float(sys.argv[2]) - float(sys.argv[1]), 1))" "$start" "$(date +%s.%N)") s wall on ctest -j2"
+# Issue 15, solvers that scale (contrib/bench/solver_scaling.py): Krylov
+# iterations per solve and time per Newton iteration against DoFs, GMRES + AMG
+# (rigid-body modes) and KLU, plastic F-bar 2D and 3D and the contact strip;
+# the fitted exponents and the crossover ('Direct solver limit = measured').
+python3 "$ANVIL_ROOT/contrib/bench/solver_scaling.py" "$ANVIL_BUILD" "$out/solver_scaling" \
+  $([ "${1:-}" = "--small" ] && echo --small) || echo "contrib/bench/solver_scaling.py failed"
 # Issue 15 (performance): solver and process wall time, thermal share, time per
 # Newton iteration against one assembly + one solve, Krylov iterations per
 # solve on the two blocks, the thermal necking bar and the tube (case 3); the

@@ -13,8 +13,8 @@ against DoFs) and prints where direct and iterative cross.
 
 Cases:
   2d    plastic F-bar block (contrib/bench/elastic_block.prm with the J2 sets of
-        contrib/bench.sh), n x n cells, n = 64 .. 512
-  3d    the same in 3D, n^3 cells, n = 10 .. 40 (69: 1 M DoFs, with --large)
+        contrib/bench.sh), n x n cells, n = 64 .. 256 (512 with --large)
+  3d    the same in 3D, n^3 cells, n = 6 .. 30 (40 and 69, 1 M DoFs, with --large)
   strip contact: contrib/bench/contact_strip.prm, n cells along the upper strip
 
 Usage: solver_scaling.py BUILD_DIR OUT_DIR [--small] [--large] [--cases 2d,3d,strip]
@@ -30,8 +30,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 J2 = ["Mechanics/Element=F-bar", "Bodies/body/Material/Model=J2",
       "Bodies/body/Material/Hardening/Initial yield stress=300",
       "Bodies/body/Material/Hardening/Hardening modulus=1000"]
-# Direct solves above these sizes take minutes each (3D: fill-in).
-DIRECT_LIMIT = {"2d": 512, "3d": 30, "strip": 100000}
+# Direct solves above these sizes take minutes each (3D: fill-in; at 20^3
+# cells, 27 783 DoFs, KLU had not finished its first factorization in 4 min).
+DIRECT_LIMIT = {"2d": 256, "3d": 12, "strip": 100000}
 
 
 def case_sets(case, n):
@@ -108,7 +109,7 @@ def main():
             solvers = args[i + 1].split(",")
         if a == "--np":
             np = int(args[i + 1])
-    sizes = {"2d": [64, 128, 256, 512], "3d": [10, 20, 30, 40] + ([69] if large else []),
+    sizes = {"2d": [64, 128, 256] + ([512] if large else []), "3d": [6, 8, 10, 12, 20, 30] + ([40, 69] if large else []),
              "strip": [1000, 4000, 16000]}
     if small:
         sizes = {"2d": [32, 64], "3d": [6, 10], "strip": [500, 1000]}
@@ -141,9 +142,20 @@ def main():
                 fits[solver] = f
                 print("%-5s %-9s time per Newton iteration ~ N^%.2f over %d .. %d DoFs" % (
                     case, solver, f[0], rows[0]["dofs"], rows[-1]["dofs"]))
-        if len(fits) == 2 and abs(fits["direct"][0] - fits["iterative"][0]) > 1e-3:
-            (pd, ad), (pi, ai) = fits["direct"], fits["iterative"]
-            print("%-5s direct and iterative cross at about %.0f DoFs (the fits)" % (case, (ai / ad) ** (1 / (pd - pi))))
+        # Where the measured times per Newton iteration change sign (direct
+        # minus iterative), interpolated in log N; else who wins throughout.
+        both = {}
+        for r in results:
+            if r["case"] == case and r["status"] == "completed":
+                both.setdefault(r["dofs"], {})[r["solver"]] = r["per_newton"]
+        pairs = sorted((n, t["direct"] - t["iterative"]) for n, t in both.items() if len(t) == 2)
+        cross = [(a, b) for a, b in zip(pairs, pairs[1:]) if (a[1] > 0) != (b[1] > 0)]
+        for (n0, d0), (n1, d1) in cross:
+            n = math.exp(math.log(n0) + (math.log(n1) - math.log(n0)) * d0 / (d0 - d1))
+            print("%-5s direct and iterative cost the same at about %.0f DoFs (between %d and %d)" % (case, n, n0, n1))
+        if pairs and not cross:
+            print("%-5s %s is cheaper per Newton iteration at every size measured (%d .. %d DoFs)"
+                  % (case, "direct" if pairs[0][1] < 0 else "iterative", pairs[0][0], pairs[-1][0]))
 
 
 if __name__ == "__main__":

@@ -43,13 +43,19 @@ namespace anvil
 
   /**
    * DoFs up to which Mechanics/Linear solver/Type = automatic factorizes
-   * (KLU) rather than iterates: where the two cost the same per Newton
-   * iteration on the plastic F-bar block, one core (doc/linear_solver.md).
-   * 3D is lower: the factor's fill grows as N^(4/3) against N log N in 2D.
+   * (KLU) rather than iterates (contrib/bench/solver_scaling.py, one core,
+   * doc/linear_solver.md). 2D: on the plastic F-bar square the two cost the
+   * same per solve at 33 282 DoFs and KLU is 1.7 times slower at 132 098;
+   * on the thin contact strip (2 cells thick, little fill) KLU stays 1.5 to
+   * 3 times faster up to 192 006: 50 000 between the two. 3D: AMG wins from
+   * 2187 DoFs (0.21 against 0.29 s per solve) and by 8.7 times at 6591; below
+   * ML's coarse size (2000 rows) AMG is one KLU solve anyway. The factor
+   * fills in far more in 3D (nested dissection: O(N^4/3) entries and O(N^2)
+   * work against O(N log N) and O(N^1.5) in 2D).
    */
   constexpr unsigned int measured_direct_solver_limit(const int dim)
   {
-    return dim == 2 ? 50000 : 20000;
+    return dim == 2 ? 50000 : 2000;
   }
 
   struct IterativeSolverSettings
