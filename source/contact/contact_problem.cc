@@ -373,6 +373,15 @@ namespace anvil
                     grew = true;
                 }
         }
+    // Within a step the pattern only grows (a new coupling found in Newton
+    // adds to it); between steps, couplings that are no longer candidates are
+    // dropped once they are most of it, e.g. the tube's folds sliding past
+    // each other: their zero entries cost fill-in in every factorization.
+    if (allowed.size() > 2 * step_allowed.size() + 64)
+      {
+        allowed = step_allowed;
+        grew    = true;
+      }
   }
 
   template <int dim>
