@@ -122,7 +122,7 @@ PY
 # Contact search and evaluation, about 10^4 slave nodes: a strip of 10000 x 2
 # cells (10001 slave nodes on its bottom) on a strip of 9999 x 2 cells
 # (contrib/bench/contact_strip.prm; --small: 1000 cells).
-#  1. contrib/bench/contact_search.cc, built out of tree against this build,
+#  1. contrib/bench/contact_search.cc (build/tests/bench_contact_search), on 1 and 2 processes,
 #     times the pieces of ContactProblem (setup, begin_step, couplings,
 #     assemble with tangent / residual only) for one-pass and two-pass
 #     node-to-segment and for the strip on a rigid plane, outside Newton.
@@ -136,18 +136,20 @@ if [ "${1:-}" = "--small" ]; then ncs=1000; fi
 cs_length=$((ncs / 100))   # square cells of 0.01 mm
 cs_scene="$ANVIL_ROOT/contrib/bench/contact_strip.prm"
 cs_sets=(--set "Geometry/Blocks=lower: 0, 0, $cs_length, 0.02, $((ncs - 1)), 2; upper: 0, 0.02, $cs_length, 0.04, $ncs, 2")
-cs_build="$out/contact_search_build"
-if cmake -S "$ANVIL_ROOT/contrib/bench/contact_search" -B "$cs_build" -Danvil_DIR="$ANVIL_BUILD" \
-     -DCMAKE_BUILD_TYPE=Release > "$out/contact_search_configure.log" 2>&1 &&
-   cmake --build "$cs_build" > "$out/contact_search_build.log" 2>&1; then
-  for variant in "" "Contact/strip/Two-pass=true" "Contact/strip/Master=floor"; do
-    extra=()
-    [ -n "$variant" ] && extra=(--set "$variant")
-    "$cs_build/contact_search" "$cs_scene" "${cs_sets[@]}" "${extra[@]}" \
-      || echo "contact_search ${variant:-one-pass}: exited with status $?"
+cs_bin="$ANVIL_BUILD/tests/bench_contact_search"
+if [ -x "$cs_bin" ]; then
+  for np in 1 2; do
+    for variant in "" "Contact/strip/Two-pass=true" "Contact/strip/Master=floor"; do
+      extra=()
+      [ -n "$variant" ] && extra=(--set "$variant")
+      echo "contact_search, $np process(es), ${variant:-one-pass}:"
+      OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpirun --oversubscribe -np $np \
+        "$cs_bin" "$cs_scene" "${cs_sets[@]}" "${extra[@]}" \
+        || echo "contact_search ${variant:-one-pass} (np $np): exited with status $?"
+    done
   done
 else
-  echo "contact_search: the build failed, see $out/contact_search_configure.log and $out/contact_search_build.log"
+  echo "contact_search: $cs_bin is missing (built with the tests: cmake --build $ANVIL_BUILD)"
 fi
 sed '/^subsection Contact/,/^end/d' "$cs_scene" > "$out/contact_strip_without_contact.prm"
 "$ANVIL_BUILD/anvil" "$cs_scene" "${cs_sets[@]}" --set "Output/Directory=$out/contact_strip" \

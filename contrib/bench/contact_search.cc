@@ -17,9 +17,8 @@
 // Each is timed (wall, max over the processes) and also given per 10^4 slave
 // nodes. The number of elements and the sum of |r_slave| (about sum t_N) of
 // an evaluation are printed: they should not depend on the processes.
-// Build it out of tree against anvil's build directory:
-//   cmake -S contrib/bench/contact_search -B BUILD -Danvil_DIR=<anvil build>
-// (contrib/bench/contact_search/CMakeLists.txt; contrib/bench.sh does it).
+// Built with the tests (build/tests/bench_contact_search), so that it
+// compiles whenever the library changes; contrib/bench.sh runs it.
 #include <deal.II/base/mpi.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/dofs/dof_handler.h>
@@ -109,9 +108,9 @@ namespace
     std::set<types::boundary_id> slave_ids;
     for (const auto &p : contact.get_pairs())
       {
-        slave_ids.insert(p.slave);
+        slave_ids.insert(p.slaves.begin(), p.slaves.end());
         if (p.two_pass)
-          slave_ids.insert(p.master);
+          slave_ids.insert(p.masters.begin(), p.masters.end());
       }
     std::set<unsigned int> slave_vertices;
     for (const auto &cell : triangulation.active_cell_iterators())

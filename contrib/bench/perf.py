@@ -1,6 +1,6 @@
 """Issue 15's figures (performance), printed, never asserted (contrib/bench.sh --perf).
 
-Per scene, one process, one thread:
+Per shipped scene with mechanics (prm/*.prm), one process, one thread:
   - solver wall time (summary.json wall_time) and the whole process (start-up,
     reading, writing included) measured around it; the start-up alone
     (`anvil SCENE --check`);
@@ -16,7 +16,8 @@ unknowns, linear): wall time, ARKode steps, nonlinear iterations, linear solves.
     python3 contrib/bench/perf.py BUILD_DIR OUT_DIR [--small] [--only NAME[,NAME...]]
 
 --only runs the named cases alone (two_blocks, necking_bar_thermal, tube_case3,
-heat_plate), e.g. to repeat one timing on a loaded machine.
+heat_plate, or any other shipped scene by its file name without .prm), e.g. to
+repeat one timing on a loaded machine.
 """
 import csv
 import json
@@ -99,6 +100,12 @@ tube_sets = ["Time/End time=5e-4"] if small else []
 cases = [("two_blocks", "prm/two_blocks.prm", []),
          ("necking_bar_thermal", "prm/necking_bar_thermal.prm", []),
          ("tube_case3", "prm/tube_impact.prm", tube_sets)]
+# The issue's "ratio on every shipped scene": the other scenes with mechanics
+# (steady_slab and heat_half_space are heat only: the heat plate below).
+cases += [(os.path.splitext(f)[0], "prm/" + f, [])
+          for f in sorted(os.listdir(os.path.join(root, "prm")))
+          if f.endswith(".prm") and os.path.splitext(f)[0] not in
+          ("two_blocks", "necking_bar_thermal", "tube_impact", "steady_slab", "heat_half_space")]
 print("issue 15 figures, one process, one thread%s:" % (" (--small: tube to 0.5 ms)" if small else ""))
 print("%-20s %7s %13s %8s %6s %7s %8s %9s %10s %6s %8s %6s" % (
     "scene", "solver", "process (cpu)", "start-up", "steps", "Newton", "heat/mech", "s/Newton",

@@ -48,8 +48,8 @@ namespace anvil
    * Parallel: the surfaces' topology (nodes with their displacement dofs and
    * reference positions, faces) is gathered on every process once; at every
    * evaluation the current and old displacements of the surface nodes are
-   * summed over the processes, and each process evaluates every P-th slave
-   * node (node number mod P), whatever the cells' partition. Node numbers follow the reference coordinates, so
+   * summed over the processes, and each process evaluates every P-th node of
+   * each surface, whatever the cells' partition. Node numbers follow the reference coordinates, so
    * they do not depend on the partition (checkpoints may change it).
    *
    * Search: per pair, an R-tree of the master faces' bounding boxes (current
@@ -276,6 +276,8 @@ namespace anvil
     std::vector<dealii::Point<dim>> x_last; // surface nodes at the last assemble()
 
     void   gather_positions(const Vector &u_ghosted, std::vector<dealii::Point<dim>> &x) const;
+    /// node_mine: the k-th node of each surface is evaluated by process k mod P.
+    void share_out_nodes();
     double tributary_area(unsigned int node, const Surface &surface,
                           const std::vector<dealii::Point<dim>> &x) const;
     /// Candidate master faces of @p node, from an R-tree search, enlarged by @p margin.
