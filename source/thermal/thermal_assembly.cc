@@ -16,10 +16,11 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <anvil/core/instantiate.h>
-#include <anvil/core/klu_factorization.h>
 #include <anvil/thermal/assembly_data.h>
 #include <anvil/thermal/kernels.h>
 #include <anvil/thermal/thermal_problem.h>
+
+#include "newton_factorisation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -106,7 +107,7 @@ namespace anvil
     mass_diagonal.compress(VectorOperation::insert);
     lumped_mass.compress(VectorOperation::insert);
     mass_jacobi.initialize(mass_matrix);
-    if (use_direct && !parameters.lumped_mass)
+    if (thermal::mass_by_klu(use_direct, parameters.lumped_mass, dof_handler.n_dofs()))
       mass_direct->factorize(mass_matrix);
     current_gamma = -1;
   }

@@ -93,7 +93,7 @@ namespace anvil
         x.compress(VectorOperation::insert);
         return 1;
       }
-    if (use_direct)
+    if (thermal::mass_by_klu(use_direct, parameters.lumped_mass, dof_handler.n_dofs()))
       {
         // M is fixed (reference configuration): factorised once, one solve
         // here instead of ~20 CG iterations.
