@@ -106,6 +106,8 @@ namespace anvil
                   local.push_back(cell->vertex(v)[c]);
               }
     node_thermal_dof.assign(node_reference.size(), numbers::invalid_dof_index);
+    heat_couplings.clear();
+    heat_couplings_grew = false;
     for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
       for (std::size_t i = 0; i + dim + 2 <= part.size(); i += dim + 2)
         {
@@ -193,6 +195,17 @@ namespace anvil
               e.weight[a] = part[i + 8 + 2 * a];
             }
           heat_elements.push_back(e);
+          // The slave's and the master face's temperatures couple in the heat
+          // problem's Newton matrix: its pattern grows by new groups only.
+          if (e.tool < 0 && e.n_master > 0)
+            {
+              std::vector<types::global_dof_index> group{node_thermal_dof[e.slave]};
+              for (unsigned int a = 0; a < e.n_master; ++a)
+                group.push_back(node_thermal_dof[e.master[a]]);
+              std::sort(group.begin(), group.end());
+              if (heat_couplings.insert(group).second)
+                heat_couplings_grew = true;
+            }
         }
   }
 
@@ -239,16 +252,15 @@ namespace anvil
               Jv(node_thermal_dof[h.master[a]]) += h.weight[a] * dQ;
         }
     };
-    e.add_diagonal = [this, writable](Vector &d) {
-      for (const auto &h : heat_elements)
-        {
-          if (writable(h.slave))
-            d(node_thermal_dof[h.slave]) += h.hA;
-          for (unsigned int a = 0; a < h.n_master; ++a)
-            if (writable(h.master[a]))
-              d(node_thermal_dof[h.master[a]]) += h.weight[a] * h.weight[a] * h.hA;
-        }
+    e.add_matrix = [this, is_constrained](const HeatExchange::Adder &add) {
+      exchange_tangent(is_constrained, add);
     };
+    e.couplings = [this]() {
+      heat_couplings_grew = false;
+      return std::vector<std::vector<types::global_dof_index>>(heat_couplings.begin(),
+                                                               heat_couplings.end());
+    };
+    e.couplings_changed = [this]() { return heat_couplings_grew; };
     return e;
   }
 

@@ -190,8 +190,22 @@ namespace anvil
         }
     }
 
+    template <int dim>
+    bool zero_on_cell(const typename ThermalProblem<dim>::HeatSource &source,
+                      const typename DoFHandler<dim>::active_cell_iterator &cell, const unsigned int n_points)
+    {
+      if (!source)
+        return true;
+      for (unsigned int q = 0; q < n_points; ++q)
+        if (source(cell, q) != 0)
+          return false;
+      return true;
+    }
+
 #define INSTANTIATE(dim)                                                                          \
   template struct ScratchData<dim>;                                                               \
+  template bool zero_on_cell<dim>(const typename ThermalProblem<dim>::HeatSource &,               \
+                                  const typename DoFHandler<dim>::active_cell_iterator &, unsigned int); \
   template void fill_weights<dim, FEValues<dim>>(const FEValues<dim> &, bool, std::vector<double> &); \
   template void fill_weights<dim, FEFaceValues<dim>>(const FEFaceValues<dim> &, bool,               \
                                                      std::vector<double> &);                       \

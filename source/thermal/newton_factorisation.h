@@ -7,6 +7,7 @@
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 
+#include <cstddef>
 #include <memory>
 
 #include <anvil/core/klu_factorization.h>
@@ -35,6 +36,17 @@ namespace anvil
       data.smoother_sweeps       = 2;
       amg                        = std::make_unique<dealii::TrilinosWrappers::PreconditionAMG>();
       amg->initialize(matrix, data);
+    }
+
+    /// Whether ARKode's mass solves use a KLU of M (factorised once per mass
+    /// assembly) rather than CG + Jacobi: where M + γA is direct and the
+    /// problem is small. Measured: 462 unknowns (two_blocks), one KLU solve
+    /// instead of 23 CG iterations; 15 625 (contrib/bench/heat_plate.prm),
+    /// 9 CG iterations beat the solve with KLU's fill-in (the run took 20 %
+    /// more CPU).
+    inline bool mass_by_klu(const bool use_direct, const bool lumped, const std::size_t n_dofs)
+    {
+      return use_direct && !lumped && n_dofs <= 5000;
     }
   } // namespace thermal
 } // namespace anvil

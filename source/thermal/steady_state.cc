@@ -56,6 +56,7 @@ namespace anvil
     if (!(diagonal > 0))
       diagonal = 1;
     newton_matrix.copy_from(tangent_matrix);
+    exchange_pattern_current = false; // the tangent's pattern now
     newton_matrix.clear_rows(dirichlet_dofs, diagonal);
     for (const auto i : locally_owned_dofs)
       if (hanging.is_constrained(i))

@@ -20,6 +20,8 @@
 #include <anvil/thermal/kernels.h>
 #include <anvil/thermal/thermal_problem.h>
 
+#include "newton_factorisation.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -105,6 +107,8 @@ namespace anvil
     mass_diagonal.compress(VectorOperation::insert);
     lumped_mass.compress(VectorOperation::insert);
     mass_jacobi.initialize(mass_matrix);
+    if (thermal::mass_by_klu(use_direct, parameters.lumped_mass, dof_handler.n_dofs()))
+      mass_direct->factorize(mass_matrix);
     current_gamma = -1;
   }
 
@@ -120,7 +124,11 @@ namespace anvil
                                             update_values | update_JxW_values | update_quadrature_points,
                                             update_default, update_default);
     const bool axi = parameters.axisymmetric;
+    // A cell without sources (elastic, no expansion) adds zeros: skip it.
     auto worker = [&](const CellIterator &cell, thermal::ScratchData<dim> &s, thermal::CopyData &c) {
+      c.n_faces = !thermal::zero_on_cell<dim>(heat_source, cell, quadrature.size());
+      if (!c.n_faces)
+        return;
       s.fe_values.reinit(cell);
       cell->get_dof_indices(c.dofs);
       thermal::fill_weights<dim>(s.fe_values, axi, s.weight);
@@ -129,7 +137,8 @@ namespace anvil
       thermal::VolumeSource::cell_load(s, c);
     };
     auto copier = [&](const thermal::CopyData &c) {
-      constraints.distribute_local_to_global(c.vector, c.dofs, step_sources);
+      if (c.n_faces)
+        constraints.distribute_local_to_global(c.vector, c.dofs, step_sources);
     };
     for_owned_cells(dof_handler, worker, copier, scratch);
     step_sources.compress(VectorOperation::add);

@@ -76,6 +76,8 @@ namespace anvil
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
+          if (!source_function && thermal::zero_on_cell<dim>(heat_source, cell, quadrature.size()))
+            continue;
           fe_values.reinit(cell);
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             {
@@ -118,6 +120,8 @@ namespace anvil
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
+          if (thermal::zero_on_cell<dim>(source, cell, quadrature.size()))
+            continue;
           fe_values.reinit(cell);
           for (unsigned int q = 0; q < quadrature.size(); ++q)
             total += source(cell, q) * fe_values.JxW(q) *

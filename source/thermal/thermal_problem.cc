@@ -68,9 +68,9 @@ namespace anvil
     int solve_newton_matrix(Vector &x, const Vector &b) override { return p.solve_newton(x, b, 0); }
     bool newton_matrix_is_exact(const double gamma) const override
     {
-      // KLU of M + γA with ARKode's γ and every coupling of J in A (the
-      // exchange's off-diagonal couplings are not: they act through GMRES).
-      return p.use_direct && p.current_gamma == gamma && !p.exchange.add_jacobian;
+      // KLU of M + γA with ARKode's γ and every coupling of J in it (the
+      // exchange's too: setup_newton adds them).
+      return p.use_direct && p.current_gamma == gamma && (!p.exchange.add_jacobian || p.exchange.add_matrix);
     }
     int mass_vmult(const Vector &v, Vector &Mv) override
     {
@@ -108,6 +108,7 @@ namespace anvil
     , quadrature(parameters.polynomial_degree + 1)
     , face_quadrature(parameters.polynomial_degree + 1)
     , newton_direct(std::make_unique<KluFactorization>())
+    , mass_direct(std::make_unique<KluFactorization>())
   {
     initial_function = parse_expression<dim>(parameters.initial_temperature, Scene(), "Heat/Initial temperature");
     if (!parameters.source.empty())
@@ -172,17 +173,16 @@ namespace anvil
     has_dirichlet = Utilities::MPI::max(dirichlet_dofs.size(), mpi_communicator) > 0;
     has_hanging   = Utilities::MPI::max(hanging.n_constraints(), mpi_communicator) > 0;
 
-    DynamicSparsityPattern dsp(locally_relevant_dofs);
-    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, true);
-    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs, mpi_communicator,
-                                               locally_relevant_dofs);
+    const DynamicSparsityPattern dsp = sparsity({});
     for (auto *m : {&mass_matrix, &tangent_matrix, &newton_matrix})
       m->reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
+    exchange_pattern_current = false;
     for (auto *v : {&lumped_mass, &mass_diagonal, &solution, &old_solution})
       v->reinit(locally_owned_dofs, mpi_communicator);
     for (auto *v : {&temperature_ghosted, &old_temperature_ghosted, &scratch_ghosted})
       v->reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
     newton_direct->clear(); // a new pattern
+    mass_direct->clear();
     use_direct = parameters.linear_solver == "direct" ||
                  (parameters.linear_solver == "automatic" &&
                   dof_handler.n_dofs() <= parameters.direct_solver_limit);
@@ -210,6 +210,23 @@ namespace anvil
     committed_time          = start_time;
     total_heat_in.clear();
     total_source = 0;
+  }
+
+  template <int dim>
+  DynamicSparsityPattern ThermalProblem<dim>::sparsity(
+    const std::vector<std::vector<types::global_dof_index>> &groups) const
+  {
+    DynamicSparsityPattern dsp(locally_relevant_dofs);
+    DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, true);
+    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs, mpi_communicator,
+                                               locally_relevant_dofs);
+    // The groups are known on every process: each adds its own rows, the
+    // columns wherever they live (another process's: ghost columns).
+    for (const auto &group : groups)
+      for (const auto i : group)
+        if (locally_owned_dofs.is_element(i))
+          dsp.add_entries(i, group.begin(), group.end(), true);
+    return dsp;
   }
 
   template <int dim>
@@ -322,7 +339,9 @@ namespace anvil
     double boundary_sum = 0;
     for (const auto &[id, q] : q_new)
       boundary_sum += (step_heat_in[id] = 0.5 * dt * (q + q_old.at(id)));
-    step_source = 0.5 * dt * (source_power(time_old) + source_power(time_new));
+    // The mechanics' sources are held over the step: only an expression source depends on t.
+    const double source_new = source_power(time_new);
+    step_source = 0.5 * dt * ((source_function ? source_power(time_old) : source_new) + source_new);
     step_dirichlet_heat_in = heat_content(temperature_ghosted) -
                              heat_content(old_temperature_ghosted) - step_source - boundary_sum;
   }

@@ -328,6 +328,11 @@ namespace anvil
     std::vector<dealii::types::global_dof_index> node_thermal_dof;
     std::vector<bool>                            node_thermal_owned;
     std::vector<HeatElement>                     heat_elements;
+    /// Temperature dofs of each slave node and master face that exchanged
+    /// heat, ever (sorted; the heat matrix pattern only grows), and whether
+    /// the set grew since the heat problem last read it.
+    std::set<std::vector<dealii::types::global_dof_index>> heat_couplings;
+    bool                                                   heat_couplings_grew = false;
     std::map<std::pair<unsigned int, unsigned int>, double> heat_flux; // (pair, slave) -> Q, mW
   };
 } // namespace anvil

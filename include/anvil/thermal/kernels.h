@@ -42,6 +42,13 @@ namespace anvil
       return axisymmetric ? 2 * dealii::numbers::PI * x[0] : 1.;
     }
 
+    /// Whether the mechanics' @p source is zero at all @p n_points points of
+    /// @p cell (or absent): its integrals there are zero, no FEValues needed.
+    template <int dim>
+    bool zero_on_cell(const typename ThermalProblem<dim>::HeatSource &source,
+                      const typename dealii::DoFHandler<dim>::active_cell_iterator &cell,
+                      unsigned int n_points);
+
     /// JxW × ring factor at every point of @p fe_values (reinit'ed).
     template <int dim, class FEValuesType>
     void fill_weights(const FEValuesType &fe_values, bool axisymmetric, std::vector<double> &weights);

@@ -11,6 +11,7 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_solver.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
@@ -213,7 +214,9 @@ namespace anvil
 
     /// Heat exchanged at nodes outside the cells' coupling (contact, eq. 30–33;
     /// core/heat_exchange.h). Called on the main thread of every process after
-    /// the threaded cell loops (the contact's functions communicate).
+    /// the threaded cell loops (the contact's functions communicate). Its
+    /// couplings enter the Newton matrix M + γA (pattern and values), so a
+    /// KLU of it is ARKode's own matrix: one solve per stage, no GMRES.
     using Exchange = HeatExchange;
     void set_exchange(const Exchange &e) { exchange = e; }
     /// Hanging-node or Temperature constraint on dof @p i (exchange skips those rows).
@@ -382,6 +385,9 @@ namespace anvil
     unsigned int solve_newton(Vector &x, const Vector &b, double tolerance);
     unsigned int solve_mass(Vector &x, const Vector &b, double tolerance);
     void   setup_newton(double gamma);
+    /// The cells' pattern (hanging and Temperature constraints kept), with
+    /// every pair of dofs of each of @p groups in the rows owned here.
+    dealii::DynamicSparsityPattern sparsity(const std::vector<std::vector<dealii::types::global_dof_index>> &groups) const;
     /// Boundary, source and Dirichlet heat of the step just solved (trapezoidal in time).
     void   step_balance(double time_old, double time_new);
     /// Steady state: f(T, t) with the Temperature and hanging rows zero (|f| returned).
@@ -420,6 +426,11 @@ namespace anvil
     std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG>    newton_amg;
     /// KLU of M + γA, its symbolic analysis kept while the pattern is (core/klu_factorization.h).
     std::unique_ptr<KluFactorization>                            newton_direct;
+    /// KLU of M (reference configuration: factorised once per assemble_mass)
+    /// for ARKode's mass solves where the Newton matrix is direct too.
+    std::unique_ptr<KluFactorization>                            mass_direct;
+    /// newton_matrix has the exchange's couplings of its last couplings().
+    bool exchange_pattern_current = false;
     dealii::TrilinosWrappers::PreconditionJacobi                  mass_jacobi;
     bool   operators_current = false, use_direct = true, linear = true;
     bool   tangent_current = false, has_convection = false; // tangent assembled for this configuration
