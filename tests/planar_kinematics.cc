@@ -3,6 +3,9 @@
 //     2x2 path (kinematics_planar_path) and the general path: every quantity
 //     equal to round-off (1e-13 of its size), random F, F_n with rotations up
 //     to 0.7 rad and stretches up to 30 %;
+//     and cauchy_tangent's planar form (planar_tangent.cc) against the
+//     general one, for random material tangents, prestress with and without
+//     the out-of-plane shears 02, 12, identity or general sensitivity;
 //  2. the closed-form Cayley transforms of the Jaumann path against
 //     (I - h)^-1 (I + h) by deal.II's invert(), h = 1/4 (dL - dL^T), in 3D.
 // Prints the largest relative difference of each check; fails above 1e-13.
@@ -10,6 +13,7 @@
 #include <deal.II/base/tensor.h>
 
 #include <anvil/material/kinematics.h>
+#include <anvil/material/material_point.h>
 
 #include <cmath>
 #include <cstdio>
@@ -56,7 +60,7 @@ namespace
 int main()
 {
   const double tolerance = 1e-13;
-  double       planar_worst = 0, cayley_worst = 0;
+  double       planar_worst = 0, cayley_worst = 0, tangent_worst = 0;
   for (unsigned int trial = 0; trial < 1000; ++trial)
     {
       const Tensor<2, 3> F = random_gradient(true), F_old = random_gradient(true);
@@ -75,6 +79,27 @@ int main()
               general.strain_increment.norm() / std::max(general.dL.norm(), 1e-300)})
         planar_worst = std::max(planar_worst, d);
 
+      // cauchy_tangent: directions of an axisymmetric element (with the hoop).
+      MaterialResponse response;
+      for (unsigned int p = 0; p < 36; ++p)
+        {
+          response.tangent.begin_raw()[p]                    = 1e5 * uniform(rng);
+          response.rotated_stress_sensitivity.begin_raw()[p] = uniform(rng);
+        }
+      response.sensitivity_is_identity = trial % 2 == 0;
+      SymmetricTensor<2, 3> sigma_n;
+      for (unsigned int c = 0; c < 6; ++c)
+        sigma_n.access_raw_entry(c) = (c >= 4 && trial % 3 == 0) ? 0. : 200 * uniform(rng);
+      const TangentDirections directions = TangentDirections::in_plane(2, true);
+      SymmetricTensor<2, 3>   ds_planar[9], ds_general[9];
+      cauchy_tangent(planar, sigma_n, response, directions, ds_planar);
+      cauchy_tangent(general, sigma_n, response, directions, ds_general);
+      double scale = 0;
+      for (unsigned int d = 0; d < directions.n; ++d)
+        scale = std::max(scale, ds_general[d].norm());
+      for (unsigned int d = 0; d < directions.n; ++d)
+        tangent_worst = std::max(tangent_worst, (ds_planar[d] - ds_general[d]).norm() / scale);
+
       // 3D: the closed forms against explicit inverses.
       const Tensor<2, 3> G = random_gradient(false), G_old = random_gradient(false);
       IncrementalKinematics kin;
@@ -92,7 +117,10 @@ int main()
               "(tolerance %.0e)\n", planar_worst, tolerance);
   std::printf("closed-form Cayley transforms vs invert(), 1000 random 3D F, F_n: largest relative "
               "difference %.2e (tolerance %.0e)\n", cayley_worst, tolerance);
-  const bool ok = planar_worst <= tolerance && cayley_worst <= tolerance;
+  std::printf("planar cauchy_tangent vs general, 1000 random cases: largest difference %.2e of "
+              "the largest dsigma (tolerance %.0e)\n", tangent_worst, tolerance);
+  const bool ok = planar_worst <= tolerance && cayley_worst <= tolerance &&
+                  tangent_worst <= tolerance;
   std::printf("%s\n", ok ? "PASS" : "FAIL");
   return ok ? 0 : 1;
 }

@@ -43,9 +43,10 @@ namespace anvil
   void IncrementalKinematics::reinit(const Tensor<2, 3> &F_new, const Tensor<2, 3> &F_old_in,
                                      const ObjectiveRate rate_in, const unsigned int what)
   {
-    rate  = rate_in;
-    F     = F_new;
-    F_old = F_old_in;
+    rate   = rate_in;
+    F      = F_new;
+    F_old  = F_old_in;
+    planar = false;
     if (rate == ObjectiveRate::jaumann && (what & kinematics_planar_path) && is_planar(F) &&
         is_planar(F_old))
       return reinit_planar(what);
@@ -100,6 +101,7 @@ namespace anvil
 
   void IncrementalKinematics::reinit_planar(const unsigned int what)
   {
+    planar = true;
     // Every tensor is [2x2 block, 0; 0, (2,2)]: the spin has the one
     // component s = h₀₁ of ½Δω, and the Cayley transforms are plane rotations,
     // (I − h)⁻¹ = I + g with g₀₀ = g₁₁ = −s²/(1 + s²), g₀₁ = −g₁₀ = s/(1 + s²).
@@ -166,6 +168,12 @@ namespace anvil
   {
     if (kin.rate != ObjectiveRate::jaumann)
       return rate_cauchy_tangent(kin, stress_old, response, directions, dsigma);
+    bool in_plane_directions = kin.planar;
+    for (unsigned int d = 0; d < directions.n; ++d)
+      if ((directions.kl[d].first == 2) != (directions.kl[d].second == 2))
+        in_plane_directions = false;
+    if (in_plane_directions)
+      return planar_cauchy_tangent(kin, stress_old, response, directions, dsigma);
     const Tensor<2, 3> I          = unit_symmetric_tensor<3>();
     const Tensor<2, 3> I_minus    = I - 0.5 * kin.dL;
     const Tensor<2, 3> one_plus_R = I + kin.rotation_increment;

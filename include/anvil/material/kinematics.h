@@ -60,6 +60,9 @@ namespace anvil
                 unsigned int  what = kinematics_all);
 
     ObjectiveRate                 rate = ObjectiveRate::jaumann;
+    /// Set by the 2x2 path (kinematics_planar_path): cauchy_tangent takes its
+    /// planar form (planar_tangent.cc).
+    bool                          planar = false;
     dealii::Tensor<2, 3>          F, F_old, F_inv, F_half_inv, dL, A_inv, A_half_inv, half_rotation;
     double                        J = 1.;
     /// sym ΔL on the mid-point configuration.
@@ -131,6 +134,14 @@ namespace anvil
                            const MaterialResponse              &response,
                            const TangentDirections             &directions,
                            dealii::SymmetricTensor<2, 3>       *dsigma);
+
+  /// cauchy_tangent for IncrementalKinematics::planar (Jaumann, F = [F_2x2,
+  /// 0; 0, F₃₃]): the same δσ with the vectors' zero components left out.
+  void planar_cauchy_tangent(const IncrementalKinematics          &kin,
+                             const dealii::SymmetricTensor<2, 3> &stress_old,
+                             const MaterialResponse              &response,
+                             const TangentDirections             &directions,
+                             dealii::SymmetricTensor<2, 3>       *dsigma);
 
   /// Embed a dim x dim tensor in 3x3 (identity in the missing directions for F).
   template <int dim>
