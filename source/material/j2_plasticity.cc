@@ -32,6 +32,28 @@ namespace anvil
 
   namespace
   {
+    /// C += s a⊗b on raw storage (deal.II's outer_product() and operator+= build
+    /// two 6x6 temporaries for it).
+    inline void add_outer_product(SymmetricTensor<4, 3> &C, const double s,
+                                  const SymmetricTensor<2, 3> &a, const SymmetricTensor<2, 3> &b)
+    {
+      double       *c  = C.begin_raw();
+      const double *ar = a.begin_raw(), *br = b.begin_raw();
+      for (unsigned int p = 0; p < 6; ++p)
+        for (unsigned int q = 0; q < 6; ++q)
+          c[6 * p + q] += s * (ar[p] * br[q]);
+    }
+
+    /// I_sym on raw storage: 1 on the normal, 1/2 on the shear diagonal.
+    inline void fill_identity(SymmetricTensor<4, 3> &S)
+    {
+      double *c = S.begin_raw();
+      for (unsigned int p = 0; p < 36; ++p)
+        c[p] = 0;
+      for (unsigned int p = 0; p < 6; ++p)
+        c[7 * p] = p < 3 ? 1. : 0.5;
+    }
+
     class J2Point : public MaterialPoint
     {
     public:
@@ -57,11 +79,14 @@ namespace anvil
         const bool            tangent = request & request_tangent;
         const MaterialRequest inner =
           tangent ? request | request_temperature_derivative : request;
+        // The iterates need the stress and ΔT_ad only (neither depends on the
+        // request); the tangent is computed once, at the converged x.
+        const MaterialRequest iterate = static_cast<MaterialRequest>(request & ~request_tangent);
         double x0 = 0, f0 = 0, x1 = 0, f1 = 0;
         for (unsigned int it = 0; it < 50; ++it)
           {
             compute(increment, increment.temperature + x1, increment.temperature_increment + x1,
-                    inner, response);
+                    iterate, response);
             f1 = response.adiabatic_temperature_increment - x1;
             if (std::abs(f1) <= 1e-12 * (1 + std::abs(x1)))
               break;
@@ -72,6 +97,9 @@ namespace anvil
             if (it == 49)
               throw MaterialPointError("the adiabatic temperature change did not converge");
           }
+        if (tangent)
+          compute(increment, increment.temperature + x1, increment.temperature_increment + x1,
+                  inner, response);
         response.adiabatic_temperature_increment = x1;
         if (tangent)
           {
@@ -93,11 +121,11 @@ namespace anvil
               (shifted.adiabatic_temperature_increment - (x1 + f1)) / h; // f(x1) = x1 + f1
             const double                amplification = 1 / (1 - df_dx);
             const SymmetricTensor<2, 3> &dsigma_dT = response.stress_temperature_derivative;
-            response.tangent += amplification * outer_product(dsigma_dT, df_de);
+            add_outer_product(response.tangent, amplification, dsigma_dT, df_de);
             if (response.sensitivity_is_identity)
-              response.rotated_stress_sensitivity = identity_tensor<3>();
+              fill_identity(response.rotated_stress_sensitivity);
             response.sensitivity_is_identity = false;
-            response.rotated_stress_sensitivity += amplification * outer_product(dsigma_dT, df_ds);
+            add_outer_product(response.rotated_stress_sensitivity, amplification, dsigma_dT, df_ds);
             // f ∝ J (sources per current volume): ∂f/∂ln J = f(x1) = x1 + f1.
             response.volume_ratio_sensitivity = (amplification * (x1 + f1)) * dsigma_dT;
           }

@@ -7,43 +7,151 @@ namespace anvil
 {
   using namespace dealii;
 
-  void IncrementalKinematics::reinit(const Tensor<2, 3> &F_new, const Tensor<2, 3> &F_old_in,
-                                     const ObjectiveRate rate_in)
+  namespace
   {
-    rate  = rate_in;
-    F     = F_new;
-    F_old = F_old_in;
-    J     = determinant(F);
-    F_inv = invert(F);
+    /// F = [F_2x2 0; 0 F₃₃]: plane strain and axisymmetric gradients.
+    bool is_planar(const Tensor<2, 3> &F)
+    {
+      return F[0][2] == 0 && F[1][2] == 0 && F[2][0] == 0 && F[2][1] == 0;
+    }
+
+    /// The inverse of [A_2x2, 0; 0, a₃₃].
+    Tensor<2, 3> planar_inverse(const Tensor<2, 3> &A)
+    {
+      const double d = A[0][0] * A[1][1] - A[0][1] * A[1][0];
+      Tensor<2, 3> inverse;
+      inverse[0][0] = A[1][1] / d;
+      inverse[0][1] = -A[0][1] / d;
+      inverse[1][0] = -A[1][0] / d;
+      inverse[1][1] = A[0][0] / d;
+      inverse[2][2] = 1 / A[2][2];
+      return inverse;
+    }
+
+    /**
+     * For a skew h with axial vector w, |w|² = h₀₁² + h₀₂² + h₁₂²:
+     *   (I − h)⁻¹ = I + g,  (I − h)⁻¹(I + h) = I + 2g,  g = (h + h²)/(1 + |w|²)
+     * (h³ = −|w|² h), the closed forms of the Cayley transforms below.
+     */
+    Tensor<2, 3> cayley_part(const Tensor<2, 3> &h)
+    {
+      const double w2 = h[0][1] * h[0][1] + h[0][2] * h[0][2] + h[1][2] * h[1][2];
+      return (1 / (1 + w2)) * (h + h * h);
+    }
+  } // namespace
+
+  void IncrementalKinematics::reinit(const Tensor<2, 3> &F_new, const Tensor<2, 3> &F_old_in,
+                                     const ObjectiveRate rate_in, const unsigned int what)
+  {
+    rate   = rate_in;
+    F      = F_new;
+    F_old  = F_old_in;
+    planar = false;
+    if (rate == ObjectiveRate::jaumann && (what & kinematics_planar_path) && is_planar(F) &&
+        is_planar(F_old))
+      return reinit_planar(what);
+    if (what & kinematics_inverse)
+      {
+        J     = determinant(F);
+        F_inv = invert(F);
+      }
     F_half_inv = invert(0.5 * (F + F_old));
     dL         = (F - F_old) * F_half_inv;
     const Tensor<2, 3> I         = unit_symmetric_tensor<3>();
+    mid_strain                   = symmetrize(dL);
+    if (rate == ObjectiveRate::jaumann)
+      {
+        // ½Δω = ½ skew ΔL: ΔR and R_h by the closed-form Cayley transforms.
+        const Tensor<2, 3> half_spin = 0.25 * (dL - transpose(dL));
+        const Tensor<2, 3> g = cayley_part(half_spin), g_half = cayley_part(0.5 * half_spin);
+        rotation_increment = I + 2 * g;
+        half_rotation      = I + 2 * g_half;
+        if (what & kinematics_tangent)
+          {
+            A_inv      = I + g;
+            A_half_inv = I + g_half;
+          }
+        strain_increment =
+          symmetrize(half_rotation * Tensor<2, 3>(mid_strain) * transpose(half_rotation));
+        return;
+      }
     if (rate == ObjectiveRate::green_naghdi)
       {
         // ΔR = R_n+1 R_nᵀ, R_h = R_n+1 R_½ᵀ (polar rotations; A_inv, A_half_inv unused).
         const Tensor<2, 3> R = polar_rotation(F);
         rotation_increment   = R * transpose(polar_rotation(F_old));
         half_rotation        = R * transpose(polar_rotation(0.5 * (F + F_old)));
-        mid_strain           = symmetrize(dL);
         strain_increment =
           symmetrize(half_rotation * Tensor<2, 3>(mid_strain) * transpose(half_rotation));
         return;
       }
-    // ½Δω: Jaumann's skew ΔL, or the log spin (logarithmic_rate.cc).
+    // ½Δω: the log spin (logarithmic_rate.cc).
     const Tensor<2, 3> half_spin =
-      rate == ObjectiveRate::logarithmic ?
-        Tensor<2, 3>(0.5 * logarithmic_spin_increment(0.5 * (F + F_old), dL)) :
-        Tensor<2, 3>(0.25 * (dL - transpose(dL)));
+      Tensor<2, 3>(0.5 * logarithmic_spin_increment(0.5 * (F + F_old), dL));
     A_inv                        = invert(I - half_spin);
     rotation_increment           = A_inv * (I + half_spin);
     // The strain increment lives on the mid-point configuration: rotate it
     // forward by half the step (Cayley transform of ¼Δω) so that the update
     // is second-order accurate for the Jaumann rate, not only first.
-    mid_strain                   = symmetrize(dL);
     A_half_inv                   = invert(I - 0.5 * half_spin);
     half_rotation                = A_half_inv * (I + 0.5 * half_spin);
     strain_increment =
       symmetrize(half_rotation * Tensor<2, 3>(mid_strain) * transpose(half_rotation));
+  }
+
+  void IncrementalKinematics::reinit_planar(const unsigned int what)
+  {
+    planar = true;
+    // Every tensor is [2x2 block, 0; 0, (2,2)]: the spin has the one
+    // component s = h₀₁ of ½Δω, and the Cayley transforms are plane rotations,
+    // (I − h)⁻¹ = I + g with g₀₀ = g₁₁ = −s²/(1 + s²), g₀₁ = −g₁₀ = s/(1 + s²).
+    F_half_inv = planar_inverse(0.5 * (F + F_old));
+    dL         = Tensor<2, 3>();
+    for (unsigned int i = 0; i < 2; ++i)
+      for (unsigned int j = 0; j < 2; ++j)
+        dL[i][j] = (F[i][0] - F_old[i][0]) * F_half_inv[0][j] +
+                   (F[i][1] - F_old[i][1]) * F_half_inv[1][j];
+    dL[2][2] = (F[2][2] - F_old[2][2]) * F_half_inv[2][2];
+    if (what & kinematics_inverse)
+      {
+        J     = (F[0][0] * F[1][1] - F[0][1] * F[1][0]) * F[2][2];
+        F_inv = planar_inverse(F);
+      }
+    const double s = 0.25 * (dL[0][1] - dL[1][0]);
+    // I + c g: c = 1 the inverse, c = 2 the rotation (cayley_part()).
+    auto plane = [](const double s, const double c) {
+      const double w = 1 / (1 + s * s);
+      Tensor<2, 3> T;
+      T[0][0] = T[1][1] = 1 - c * s * s * w;
+      T[0][1]           = c * s * w;
+      T[1][0]           = -c * s * w;
+      T[2][2]           = 1;
+      return T;
+    };
+    rotation_increment = plane(s, 2);
+    half_rotation      = plane(0.5 * s, 2);
+    if (what & kinematics_tangent)
+      {
+        A_inv      = plane(s, 1);
+        A_half_inv = plane(0.5 * s, 1);
+      }
+    mid_strain       = SymmetricTensor<2, 3>();
+    mid_strain[0][0] = dL[0][0];
+    mid_strain[1][1] = dL[1][1];
+    mid_strain[0][1] = 0.5 * (dL[0][1] + dL[1][0]);
+    mid_strain[2][2] = dL[2][2];
+    // R_h Δε_mid R_hᵀ on the 2x2 block.
+    const Tensor<2, 3> &Q = half_rotation;
+    double              M[2][2];
+    for (unsigned int i = 0; i < 2; ++i)
+      for (unsigned int l = 0; l < 2; ++l)
+        M[i][l] = Q[i][0] * mid_strain[0][l] + Q[i][1] * mid_strain[1][l];
+    strain_increment       = SymmetricTensor<2, 3>();
+    strain_increment[0][0] = M[0][0] * Q[0][0] + M[0][1] * Q[0][1];
+    strain_increment[1][1] = M[1][0] * Q[1][0] + M[1][1] * Q[1][1];
+    strain_increment[0][1] =
+      0.5 * ((M[0][0] * Q[1][0] + M[0][1] * Q[1][1]) + (M[1][0] * Q[0][0] + M[1][1] * Q[0][1]));
+    strain_increment[2][2] = mid_strain[2][2];
   }
 
   Tensor<2, 3> first_piola_stress(const IncrementalKinematics &kin,
@@ -60,6 +168,12 @@ namespace anvil
   {
     if (kin.rate != ObjectiveRate::jaumann)
       return rate_cauchy_tangent(kin, stress_old, response, directions, dsigma);
+    bool in_plane_directions = kin.planar;
+    for (unsigned int d = 0; d < directions.n; ++d)
+      if ((directions.kl[d].first == 2) != (directions.kl[d].second == 2))
+        in_plane_directions = false;
+    if (in_plane_directions)
+      return planar_cauchy_tangent(kin, stress_old, response, directions, dsigma);
     const Tensor<2, 3> I          = unit_symmetric_tensor<3>();
     const Tensor<2, 3> I_minus    = I - 0.5 * kin.dL;
     const Tensor<2, 3> one_plus_R = I + kin.rotation_increment;

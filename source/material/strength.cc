@@ -12,7 +12,11 @@ namespace anvil
   {
     if (!plastic || !hardening)
       return {};
-    const auto limit = hardening->strength_limit();
+    // Asked at every point of every step: the limit (with its formatted
+    // formula) is the law's constant, built once.
+    std::call_once(strength_limit_once,
+                   [this]() { strength_limit_cache = hardening->strength_limit(); });
+    const auto &limit = strength_limit_cache;
     if (T >= limit.temperature)
       return {limit.location, "makes the yield stress vanish at T >= " +
                                 short_number(limit.temperature) + " K (" + limit.formula + ")"};

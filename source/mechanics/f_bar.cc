@@ -49,10 +49,12 @@ namespace anvil
                                               Tensor<2, 3>           &F_mat_old) const
     {
       // F̄ = (J₀/J)^α F on the active block.
-      const double alpha = formulation.alpha;
-      beta               = std::pow(scratch.J0 / formulation.active_det(F), alpha);
-      F_mat_old =
-        formulation.bar(F_old, std::pow(scratch.J0_old / formulation.active_det(F_old), alpha));
+      // x^α with α = 1/2 (plane strain) or 1/3: sqrt or cbrt, not pow().
+      const auto power = [this](const double x) {
+        return formulation.plane_strain ? std::sqrt(x) : std::cbrt(x);
+      };
+      beta      = power(scratch.J0 / formulation.active_det(F));
+      F_mat_old = formulation.bar(F_old, power(scratch.J0_old / formulation.active_det(F_old)));
       return formulation.bar(F, beta);
     }
 

@@ -2,6 +2,8 @@
 #include <anvil/core/instantiate.h>
 #include <anvil/mechanics/assembly_kernels.h>
 
+#include <array>
+
 namespace anvil
 {
   namespace MechanicsAssembly
@@ -21,17 +23,17 @@ namespace anvil
       // Mass on the reference configuration: ρ₀ dV is conserved.
       FullMatrix<double> &cell_mass = scratch.cell_mass;
       cell_mass                     = 0;
+      std::array<double, 81> N; // N_a at q, up to 27-node hexahedra x 3 components
+      AssertThrow(n_dofs <= N.size(), ExcInternalError());
       for (unsigned int q = 0; q < scratch.points.size(); ++q)
         {
           const double w = scratch.points[q].w;
           for (unsigned int a = 0; a < n_dofs; ++a)
-            {
-              const double Na = scratch.fe_values.shape_value_component(a, q, component[a]);
-              for (unsigned int b = 0; b < n_dofs; ++b)
-                if (component[a] == component[b])
-                  cell_mass(a, b) +=
-                    scratch.rho * Na * scratch.fe_values.shape_value_component(b, q, component[b]) * w;
-            }
+            N[a] = scratch.fe_values.shape_value_component(a, q, component[a]);
+          for (unsigned int a = 0; a < n_dofs; ++a)
+            for (unsigned int b = 0; b < n_dofs; ++b)
+              if (component[a] == component[b])
+                cell_mass(a, b) += scratch.rho * N[a] * N[b] * w;
         }
     }
 

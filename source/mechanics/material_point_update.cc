@@ -40,6 +40,8 @@ namespace anvil
 
     template <int dim>
     void MaterialPointUpdate<dim>::audit_terms(const CellIterator<dim>   &cell,
+                                               const MaterialModel       &model,
+                                               const J2Model             *j2,
                                                const unsigned int         q,
                                                const Tensor<2, 3>        &F,
                                                const Tensor<2, 3>        &F_old,
@@ -60,7 +62,7 @@ namespace anvil
       if (context.formulation->f_bar)
         {
           IncrementalKinematics true_kin;
-          true_kin.reinit(F, F_old, context.formulation->objective_rate);
+          true_kin.reinit(F, F_old, context.formulation->objective_rate, kinematics_planar_path);
           terms[audit_stress_work] =
             (mean_stress(true_kin, sigma_n, r.stress) * true_kin.strain_increment) * dv_half;
         }
@@ -81,8 +83,6 @@ namespace anvil
 
       // Thermal terms: the expansion's work σ̄ : βΔT I and the energy the
       // stress σ_n gains or loses because the moduli change from T_n to T_n+1.
-      const MaterialModel &model = *context.materials->at(cell->material_id());
-      const auto          *j2    = dynamic_cast<const J2Model *>(&model);
       const double         T_new = context.has_temperature_field() ?
                                      (*context.material_temperature)(cell, q) :
                                      increment.temperature;
@@ -122,7 +122,9 @@ namespace anvil
         f_bar.evaluate_centre(cell, scratch);
       auto cell_points = (*context.points)[cell];
 
-      MaterialIncrement increment;
+      const MaterialModel &model = *context.materials->at(cell->material_id());
+      const auto          *j2    = dynamic_cast<const J2Model *>(&model);
+      MaterialIncrement    increment;
       for (unsigned int q = 0; q < scratch.points.size(); ++q)
         {
           PointValues       &p     = scratch.points[q];
@@ -141,7 +143,8 @@ namespace anvil
           if (formulation.f_bar)
             F_mat = f_bar.material_gradient(scratch, F, F_old, beta, F_mat_old);
           IncrementalKinematics &kin = p.kin;
-          kin.reinit(F_mat, F_mat_old, formulation.objective_rate);
+          kin.reinit(F_mat, F_mat_old, formulation.objective_rate,
+                     kinematics_planar_path | (context.with_matrix ? kinematics_tangent : 0));
           increment.strain_increment   = kin.strain_increment;
           increment.rotation_increment = kin.rotation_increment;
           increment.temperature        = heat ? scratch.T_new[q] : context.reference_temperature;
@@ -182,7 +185,7 @@ namespace anvil
             (*context.material_temperature)(cell, q) =
               increment.temperature +
               (increment.adiabatic ? response.adiabatic_temperature_increment : 0.);
-          audit_terms(cell, q, F, F_old, p, increment, copy.audit[q]);
+          audit_terms(cell, model, j2, q, F, F_old, p, increment, copy.audit[q]);
           copy.max_plastic_increment =
             std::max(copy.max_plastic_increment,
                      response.equivalent_plastic_strain - point.committed_equivalent_plastic_strain());

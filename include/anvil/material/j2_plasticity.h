@@ -5,6 +5,7 @@
 #include <anvil/material/material_point.h>
 
 #include <cmath>
+#include <mutex>
 
 namespace anvil
 {
@@ -138,5 +139,9 @@ namespace anvil
     bool viscous = false; // true: Perzyna overstress (subsection Viscosity)
     bool johnson_cook = false;    // true: the Johnson-Cook model (rate below)
     JohnsonCookRate johnson_cook_rate; // active(): multiplicative rate factor, no Perzyna
+
+  private:
+    mutable std::once_flag                      strength_limit_once;
+    mutable HardeningLaw::StrengthLimit         strength_limit_cache;
   };
 } // namespace anvil

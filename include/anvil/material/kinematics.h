@@ -37,12 +37,32 @@ namespace anvil
    *    rotations of F, F_n and F_½ (total F: the reference is F = I). In the
    *    frame of R, σ̂ = Rᵀσ R, this is the mid-point rule for dσ̂/dt = H : RᵀDR.
    */
+  /// What IncrementalKinematics::reinit() computes beyond the increment
+  /// (ΔL, F_½⁻¹, Δε, ΔR, R_h): bits, like MaterialRequest.
+  enum KinematicsUpdate : unsigned int
+  {
+    kinematics_increment = 0,
+    kinematics_inverse   = 1, // J and F⁻¹ (first_piola_stress, first_piola_tangent)
+    kinematics_tangent   = 2, // A⁻¹ and A_h⁻¹ (cauchy_tangent)
+    /// Jaumann with F and F_n of the form [2x2, 0; 0, F₃₃] (plane strain,
+    /// axisymmetric): the same quantities by 2x2 formulas. Without this
+    /// bit the general 3x3 path (tests compare the two).
+    kinematics_planar_path = 4,
+    kinematics_all         = 7
+  };
+
   struct IncrementalKinematics
   {
+    /// @p what: KinematicsUpdate bits; the quantities not asked for keep
+    /// their previous values.
     void reinit(const dealii::Tensor<2, 3> &F, const dealii::Tensor<2, 3> &F_old,
-                ObjectiveRate rate = ObjectiveRate::jaumann);
+                ObjectiveRate rate = ObjectiveRate::jaumann,
+                unsigned int  what = kinematics_all);
 
     ObjectiveRate                 rate = ObjectiveRate::jaumann;
+    /// Set by the 2x2 path (kinematics_planar_path): cauchy_tangent takes its
+    /// planar form (planar_tangent.cc).
+    bool                          planar = false;
     dealii::Tensor<2, 3>          F, F_old, F_inv, F_half_inv, dL, A_inv, A_half_inv, half_rotation;
     double                        J = 1.;
     /// sym ΔL on the mid-point configuration.
@@ -50,6 +70,9 @@ namespace anvil
     /// R_h sym(ΔL) R_hᵀ: the mid-point strain increment carried to t_n+1.
     dealii::SymmetricTensor<2, 3> strain_increment;
     dealii::Tensor<2, 3>          rotation_increment;
+
+  private:
+    void reinit_planar(unsigned int what);
   };
 
   /**
@@ -111,6 +134,14 @@ namespace anvil
                            const MaterialResponse              &response,
                            const TangentDirections             &directions,
                            dealii::SymmetricTensor<2, 3>       *dsigma);
+
+  /// cauchy_tangent for IncrementalKinematics::planar (Jaumann, F = [F_2x2,
+  /// 0; 0, F₃₃]): the same δσ with the vectors' zero components left out.
+  void planar_cauchy_tangent(const IncrementalKinematics          &kin,
+                             const dealii::SymmetricTensor<2, 3> &stress_old,
+                             const MaterialResponse              &response,
+                             const TangentDirections             &directions,
+                             dealii::SymmetricTensor<2, 3>       *dsigma);
 
   /// Embed a dim x dim tensor in 3x3 (identity in the missing directions for F).
   template <int dim>

@@ -6,6 +6,8 @@
 
 namespace anvil
 {
+  class J2Model;
+
   namespace MechanicsAssembly
   {
     /*
@@ -93,7 +95,10 @@ namespace anvil
 
     private:
       /// The energy audit's terms of point @p q over the step (AuditTerm), after its update.
+      /// (@p j2: @p model if it is a J2Model, for its temperature-dependent moduli.)
       void audit_terms(const CellIterator<dim>    &cell,
+                       const MaterialModel        &model,
+                       const J2Model              *j2,
                        unsigned int                q,
                        const dealii::Tensor<2, 3> &F,
                        const dealii::Tensor<2, 3> &F_old,
