@@ -7,6 +7,7 @@
 #include <deal.II/numerics/rtree.h>
 
 #include <anvil/contact/contact_problem.h>
+#include <anvil/contact/free_end.h>
 #include <anvil/core/input_error.h>
 #include <anvil/core/instantiate.h>
 #include <anvil/core/scene.h>
@@ -21,6 +22,7 @@
 namespace anvil
 {
   using namespace dealii;
+
 
   template <int dim>
   void ContactProblem<dim>::setup(const DoFHandler<dim> &dof_handler, const bool axi)
@@ -437,6 +439,7 @@ namespace anvil
                     // The closest master face the node projects into.
                     int best_face = -1;
                     std::vector<std::pair<unsigned int, unsigned int>> beyond_end; // (face, its end)
+                    bool extended = false; // best_face is an end segment extended (free_end_contact)
                     for (const auto f : candidates[n])
                       {
                         if (!may_touch(p, n, f, x))
@@ -473,6 +476,36 @@ namespace anvil
                     if (best_face < 0)
                       {
                         const auto corner = concave_corner(beyond_end);
+                        if constexpr (dim == 2)
+                          if (corner.first < 0)
+                            {
+                              // Beyond a free end of the master surface: its end
+                              // segment extended, tapered (free_end_contact).
+                              for (const auto &[f, end] : beyond_end)
+                                {
+                                  const unsigned int v    = faces[f].nodes[end];
+                                  bool               free = true;
+                                  for (const auto g : node_faces[v])
+                                    free = free && (g == f || !master_side(p, pass).has(faces[g]));
+                                  if (!free)
+                                    continue;
+                                  std::vector<Point<dim>> xm, xm_old;
+                                  for (const auto m : faces[f].nodes)
+                                    {
+                                      xm.push_back(x[m]);
+                                      xm_old.push_back(x_old[m]);
+                                    }
+                                  auto r = contact::free_end_contact(x[n], x_old[n], xm, xm_old, end, state,
+                                                            law, with_matrix);
+                                  if (r.in_contact &&
+                                      (best_face < 0 || std::abs(r.gap) < std::abs(result.gap)))
+                                    {
+                                      result    = std::move(r);
+                                      best_face = f;
+                                      extended  = true;
+                                    }
+                                }
+                            }
                         if (corner.first >= 0)
                           {
                             const unsigned int v = faces[corner.first].nodes[corner.second];
@@ -518,7 +551,9 @@ namespace anvil
                           dofs.insert(dofs.end(), node_dofs[m].begin(), node_dofs[m].end());
                         trials[key].face = best_face;
                         const auto &xi   = result.xi;
-                        if (dim == 2)
+                        if (dim == 2 && extended) // the heat goes to the end node
+                          trials[key].weights = {xi[0] < 0 ? 1. : 0., xi[0] < 0 ? 0. : 1.};
+                        else if (dim == 2)
                           trials[key].weights = {1 - xi[0], xi[0]};
                         else
                           trials[key].weights = {(1 - xi[0]) * (1 - xi[1]), xi[0] * (1 - xi[1]),
