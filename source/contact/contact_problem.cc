@@ -405,6 +405,15 @@ namespace anvil
     bool   missing     = false;
     double penetration = 0;
     trials.clear();
+    // A master face's nodes now and at t_n.
+    const auto face_positions = [&](const unsigned int f, std::vector<Point<dim>> &xm,
+                                    std::vector<Point<dim>> &xm_old) {
+      for (const auto m : faces[f].nodes)
+        {
+          xm.push_back(x[m]);
+          xm_old.push_back(x_old[m]);
+        }
+    };
     for (unsigned int p = 0; p < pairs.size(); ++p)
       {
         const Pair &pair = pairs[p];
@@ -445,11 +454,7 @@ namespace anvil
                         if (!may_touch(p, n, f, x))
                           continue;
                         std::vector<Point<dim>> xm, xm_old;
-                        for (const auto m : faces[f].nodes)
-                          {
-                            xm.push_back(x[m]);
-                            xm_old.push_back(x_old[m]);
-                          }
+                        face_positions(f, xm, xm_old);
                         auto r = contact::node_to_segment(x[n], x_old[n], xm, xm_old, state, law,
                                                           false);
                         if (!r.projection_inside)
@@ -490,13 +495,9 @@ namespace anvil
                                   if (!free)
                                     continue;
                                   std::vector<Point<dim>> xm, xm_old;
-                                  for (const auto m : faces[f].nodes)
-                                    {
-                                      xm.push_back(x[m]);
-                                      xm_old.push_back(x_old[m]);
-                                    }
-                                  auto r = contact::free_end_contact(x[n], x_old[n], xm, xm_old, end, state,
-                                                            law, with_matrix);
+                                  face_positions(f, xm, xm_old);
+                                  auto r = contact::free_end_contact(x[n], x_old[n], xm, xm_old, end,
+                                                                     state, law, with_matrix);
                                   if (r.in_contact &&
                                       (best_face < 0 || std::abs(r.gap) < std::abs(result.gap)))
                                     {
@@ -531,11 +532,7 @@ namespace anvil
                       {
                         // The tangent for the face kept only.
                         std::vector<Point<dim>> xm, xm_old;
-                        for (const auto m : faces[best_face].nodes)
-                          {
-                            xm.push_back(x[m]);
-                            xm_old.push_back(x_old[m]);
-                          }
+                        face_positions(best_face, xm, xm_old);
                         result = contact::node_to_segment(x[n], x_old[n], xm, xm_old, state, law, true);
                       }
                     if (best_face >= 0 && result.in_contact)

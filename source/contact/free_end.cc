@@ -12,11 +12,10 @@ namespace anvil
     using namespace dealii;
 
     ContactResult<2> free_end_contact(const Point<2> &xs, const Point<2> &xs_old,
-                                               const std::vector<Point<2>> &xm,
-                                               const std::vector<Point<2>> &xm_old,
-                                               const unsigned int end,
-                                               const NodeState<2> &state,
-                                               const FrictionLaw &law, const bool with_matrix)
+                                      const std::vector<Point<2>> &xm,
+                                      const std::vector<Point<2>> &xm_old, const unsigned int end,
+                                      const NodeState<2> &state, const FrictionLaw &law,
+                                      const bool with_matrix)
     {
       const Tensor<1, 2> e  = xm[1] - xm[0];
       const double       L2 = e * e;
@@ -30,9 +29,9 @@ namespace anvil
       const double dw_dxi = (end == 0 ? 1. : -1.) * 6 * t * (1 - t) / end_taper;
 
       // The end segment extended by twice the taper: x'_end = (1 + s) x_end − s x_other.
-      const double              s     = 2 * end_taper;
-      const unsigned int        other = 1 - end;
-      std::vector<Point<2>>     ext = xm, ext_old = xm_old;
+      const double          s     = 2 * end_taper;
+      const unsigned int    other = 1 - end;
+      std::vector<Point<2>> ext = xm, ext_old = xm_old;
       ext[end]     = xm[end] + s * (xm[end] - xm[other]);
       ext_old[end] = xm_old[end] + s * (xm_old[end] - xm_old[other]);
       ContactResult<2> r = node_to_segment(xs, xs_old, ext, ext_old, state, law, with_matrix);
