@@ -497,7 +497,8 @@ namespace anvil
                                   std::vector<Point<dim>> xm, xm_old;
                                   face_positions(f, xm, xm_old);
                                   auto r = contact::free_end_contact(x[n], x_old[n], xm, xm_old, end,
-                                                                     state, law, with_matrix);
+                                                                     state, law, with_matrix,
+                                                                     pair.end_taper);
                                   if (r.in_contact &&
                                       (best_face < 0 || std::abs(r.gap) < std::abs(result.gap)))
                                     {

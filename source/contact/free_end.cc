@@ -15,8 +15,10 @@ namespace anvil
                                       const std::vector<Point<2>> &xm,
                                       const std::vector<Point<2>> &xm_old, const unsigned int end,
                                       const NodeState<2> &state, const FrictionLaw &law,
-                                      const bool with_matrix)
+                                      const bool with_matrix, const double end_taper)
     {
+      if (!(end_taper > 0))
+        return ContactResult<2>();
       const Tensor<1, 2> e  = xm[1] - xm[0];
       const double       L2 = e * e;
       const Tensor<1, 2> a  = xs - xm[0];

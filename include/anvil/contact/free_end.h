@@ -6,10 +6,11 @@ namespace anvil
 {
   namespace contact
   {
-    /// How far beyond a free end of a 2D master surface (in lengths of its end
-    /// segment, past the parameter tolerance of contact_element.cc) a slave
-    /// still feels the end segment, its force tapered smoothly to zero there.
-    constexpr double end_taper = 0.05;
+    /// The default of Contact/<pair>/Free end taper: how far beyond a free end
+    /// of a 2D master surface (in lengths of its end segment, past the
+    /// parameter tolerance of contact_element.cc) a slave still feels the end
+    /// segment, its force tapered smoothly to zero there.
+    constexpr double default_end_taper = 0.05;
     /// contact_element.cc's parameter tolerance: up to it the end segment acts in full.
     constexpr double end_tolerance = 1e-3;
 
@@ -30,6 +31,7 @@ namespace anvil
                                       const std::vector<dealii::Point<2>> &xm,
                                       const std::vector<dealii::Point<2>> &xm_old,
                                       unsigned int end, const NodeState<2> &state,
-                                      const FrictionLaw &law, bool with_matrix);
+                                      const FrictionLaw &law, bool with_matrix,
+                                      double end_taper = default_end_taper);
   } // namespace contact
 } // namespace anvil
