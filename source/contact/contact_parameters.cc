@@ -94,6 +94,13 @@ namespace anvil
         prm.declare_entry("Penalty tangent", "0", Patterns::Double(0),
                           "c_T of the elastic slip (eq. 28), same units as Penalty normal; "
                           "0: frictionless.");
+        prm.declare_entry("Free end taper", "0.05", Patterns::Double(0),
+                          "2D: beyond a free end of the master surface (a vertex no other master "
+                          "face shares, e.g. a skin's corner) its end segment still carries a "
+                          "slave node, the force tapered smoothly to zero over this many lengths "
+                          "of that segment, so that a node resting at the end does not flip in "
+                          "and out of contact (doc/contact.md, 'Free ends'). 0: a sharp end. 3D "
+                          "facet edges are sharp whatever this is.");
         prm.declare_entry("Penalty per", "node", Patterns::Selection("node|area"),
                           "node: the penalties are nodal stiffnesses (the seed's choice); area: "
                           "per unit area, scaled by each slave node's tributary area at the start "
@@ -180,6 +187,7 @@ namespace anvil
         if (p.two_pass && p.tool >= 0)
           scene.fail(path + "Two-pass", "is true but the Master is a rigid tool (a tool has no nodes)");
         p.per_area                = prm.get("Penalty per") == "area";
+        p.end_taper               = prm.get_double("Free end taper");
         p.law.penalty_normal      = prm.get_double("Penalty normal");
         p.law.penalty_tangent     = prm.get_double("Penalty tangent");
         p.law.mu_static           = prm.get_double("Friction coefficient");

@@ -7,6 +7,7 @@
 #include <deal.II/numerics/rtree.h>
 
 #include <anvil/contact/contact_problem.h>
+#include <anvil/contact/free_end.h>
 #include <anvil/core/input_error.h>
 #include <anvil/core/instantiate.h>
 #include <anvil/core/scene.h>
@@ -21,6 +22,7 @@
 namespace anvil
 {
   using namespace dealii;
+
 
   template <int dim>
   void ContactProblem<dim>::setup(const DoFHandler<dim> &dof_handler, const bool axi)
@@ -431,6 +433,15 @@ namespace anvil
     bool   missing     = false;
     double penetration = 0;
     trials.clear();
+    // A master face's nodes now and at t_n.
+    const auto face_positions = [&](const unsigned int f, std::vector<Point<dim>> &xm,
+                                    std::vector<Point<dim>> &xm_old) {
+      for (const auto m : faces[f].nodes)
+        {
+          xm.push_back(x[m]);
+          xm_old.push_back(x_old[m]);
+        }
+    };
     for (unsigned int p = 0; p < pairs.size(); ++p)
       {
         const Pair &pair = pairs[p];
@@ -465,16 +476,13 @@ namespace anvil
                     // The closest master face the node projects into.
                     int best_face = -1;
                     std::vector<std::pair<unsigned int, unsigned int>> beyond_end; // (face, its end)
+                    bool extended = false; // best_face is an end segment extended (free_end_contact)
                     for (const auto f : candidates[n])
                       {
                         if (!may_touch(p, n, f, x))
                           continue;
                         std::vector<Point<dim>> xm, xm_old;
-                        for (const auto m : faces[f].nodes)
-                          {
-                            xm.push_back(x[m]);
-                            xm_old.push_back(x_old[m]);
-                          }
+                        face_positions(f, xm, xm_old);
                         auto r = contact::node_to_segment(x[n], x_old[n], xm, xm_old, state, law,
                                                           false);
                         if (!r.projection_inside)
@@ -501,6 +509,33 @@ namespace anvil
                     if (best_face < 0)
                       {
                         const auto corner = concave_corner(beyond_end);
+                        if constexpr (dim == 2)
+                          if (corner.first < 0)
+                            {
+                              // Beyond a free end of the master surface: its end
+                              // segment extended, tapered (free_end_contact).
+                              for (const auto &[f, end] : beyond_end)
+                                {
+                                  const unsigned int v    = faces[f].nodes[end];
+                                  bool               free = true;
+                                  for (const auto g : node_faces[v])
+                                    free = free && (g == f || !master_side(p, pass).has(faces[g]));
+                                  if (!free)
+                                    continue;
+                                  std::vector<Point<dim>> xm, xm_old;
+                                  face_positions(f, xm, xm_old);
+                                  auto r = contact::free_end_contact(x[n], x_old[n], xm, xm_old, end,
+                                                                     state, law, with_matrix,
+                                                                     pair.end_taper);
+                                  if (r.in_contact &&
+                                      (best_face < 0 || std::abs(r.gap) < std::abs(result.gap)))
+                                    {
+                                      result    = std::move(r);
+                                      best_face = f;
+                                      extended  = true;
+                                    }
+                                }
+                            }
                         if (corner.first >= 0)
                           {
                             const unsigned int v = faces[corner.first].nodes[corner.second];
@@ -526,11 +561,7 @@ namespace anvil
                       {
                         // The tangent for the face kept only.
                         std::vector<Point<dim>> xm, xm_old;
-                        for (const auto m : faces[best_face].nodes)
-                          {
-                            xm.push_back(x[m]);
-                            xm_old.push_back(x_old[m]);
-                          }
+                        face_positions(best_face, xm, xm_old);
                         result = contact::node_to_segment(x[n], x_old[n], xm, xm_old, state, law, true);
                       }
                     if (best_face >= 0 && result.in_contact)
@@ -546,7 +577,9 @@ namespace anvil
                           dofs.insert(dofs.end(), node_dofs[m].begin(), node_dofs[m].end());
                         trials[key].face = best_face;
                         const auto &xi   = result.xi;
-                        if (dim == 2)
+                        if (dim == 2 && extended) // the heat goes to the end node
+                          trials[key].weights = {xi[0] < 0 ? 1. : 0., xi[0] < 0 ? 0. : 1.};
+                        else if (dim == 2)
                           trials[key].weights = {1 - xi[0], xi[0]};
                         else
                           trials[key].weights = {(1 - xi[0]) * (1 - xi[1]), xi[0] * (1 - xi[1]),

@@ -84,9 +84,14 @@ namespace anvil
     // full-step trial): the iteration costs one assembly, not one plus a
     // residual evaluation at the same state.
     bool assembled = false;
+    // When the next test will almost surely converge (quadratic phase, see
+    // likely_converged below), the full step's state is evaluated for its
+    // residual only, and the matrix assembled only if that test fails after
+    // all: the matrix of the last evaluation of a step is never used.
+    bool residual_only = false;
     for (unsigned int it = 0;; ++it)
       {
-        if (!assembled && !assemble(true, time_new))
+        if (!assembled && !assemble(!residual_only, time_new))
           {
             result.failure = material_failure_message();
             return result;
@@ -153,6 +158,11 @@ namespace anvil
                              " iterations (|R| = " + Utilities::to_string(r, 3) + " N)";
             return result;
           }
+        if (residual_only && !assembled && !assemble(true, time_new))
+          {
+            result.failure = material_failure_message();
+            return result;
+          }
 
         du = 0;
         try
@@ -169,10 +179,19 @@ namespace anvil
         last_increment     = du.l2_norm();
         result.increments.push_back(last_increment);
 
+        // Quadratic convergence predicts the next residual as r (r / r_prev)²;
+        // a tenth of the tolerance below that, the full step is taken without
+        // the line search's trial (which accepts α = 1 there anyway).
+        const double contraction      = r / std::max(r_previous, 1e-300);
+        const bool   likely_converged = it > 0 && contraction < 0.5 &&
+                                      r * contraction * contraction <=
+                                        0.1 * std::max(parameters.absolute_residual_tolerance,
+                                                       parameters.residual_tolerance * scale);
         // The first update carries the boundary jump: take it whole.
         // Near convergence (and on the round-off floor) s(α) is noise.
-        result.line_search_steps.push_back(
-          line_search(du, (it == 0 && has_jump) || residual_ok, time_new, assembled));
+        result.line_search_steps.push_back(line_search(
+          du, (it == 0 && has_jump) || residual_ok || likely_converged, time_new, assembled));
+        residual_only = (residual_ok || likely_converged) && !assembled;
       }
   }
 

@@ -78,6 +78,9 @@ namespace anvil
       /// already both passes (two-pass: half penalties, as between bodies).
       bool                                    self     = false;
       bool                                    per_area = false;
+      /// 2D: the taper beyond a free end of the master surface, in lengths of
+      /// its end segment (free_end.h); 0: a sharp end, as 3D facet edges are.
+      double                                  end_taper = 0.05;
       contact::FrictionLaw                    law;
       // Thermal contact (eq. 30–34).
       double conductance = 0, hardness = 1, exponent = 1, slave_share = 0.5;
