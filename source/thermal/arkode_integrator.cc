@@ -200,6 +200,10 @@ namespace anvil
             ARKStepSetTables(mem, 1, 0, table, nullptr);
             ARKodeButcherTable_Free(table);
           }
+        // ARKode's own messages (step size below round-off, mxstep reached)
+        // would precede anvil's one line on a failed heat step, which names
+        // the cause (a NaN boundary value, the step it cut back): silenced.
+        ARKStepSetErrFile(mem, nullptr);
         ARKStepSetPostprocessStepFn(mem, record_step);
         ARKStepSetMaxNumSteps(mem, settings.max_internal_steps);
         ARKStepSetInterpolantType(mem, ARK_INTERP_LAGRANGE);
