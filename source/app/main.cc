@@ -62,17 +62,21 @@ namespace
   }
 
   // A process started without a launcher (no mpirun/srun variables) is a
-  // one-rank run. Open MPI would still start a helper daemon (orted) for it and
-  // open every network transport, and the Omni-Path one (libpsm2) calibrates a
-  // clock with ~800 sleeps of 125 us when it loads: together ~0.2 s of a
-  // 0.6 s start-up (issue 15, measured with strace). A single rank needs
-  // neither. Never overrides what the user set, never touches launched runs.
+  // one-rank run. Open MPI would open every network transport for it, and the
+  // Omni-Path one (libpsm2) calibrates a clock with ~800 sleeps of 125 us when
+  // it loads: ~0.2 s of a 0.6 s start-up (issue 15, measured with strace
+  // and timings). A single rank needs no network: pml ob1 (shared
+  // memory and self) only. Not ess_singleton_isolated, which would save the
+  // daemon's ~0.09 s too: isolated singletons all get the same session
+  // directory (jf.0/1), and one run's clean-up removed it under another's
+  // MPI-IO file (p4est's checkpoint: "sharedfp_sm ... unable to open file"),
+  // a crash seen with tests running side by side. Never overrides what the
+  // user set, never touches launched runs.
   void lean_singleton_mpi()
   {
     for (const char *launched : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
       if (std::getenv(launched) != nullptr)
         return;
-    setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
     setenv("OMPI_MCA_pml", "ob1", 0);
   }
 } // namespace
