@@ -348,6 +348,93 @@ namespace anvil
   }
 
   template <int dim>
+  void ContactProblem<dim>::face_positions(const unsigned int f, const std::vector<Point<dim>> &x,
+                                           std::vector<Point<dim>> &xm,
+                                           std::vector<Point<dim>> &xm_old) const
+  {
+    for (const auto m : faces[f].nodes)
+      {
+        xm.push_back(x[m]);
+        xm_old.push_back(x_old[m]);
+      }
+  }
+
+  template <int dim>
+  int ContactProblem<dim>::closest_face(
+    const unsigned int p, const unsigned int n, const std::vector<unsigned int> &candidates,
+    const std::vector<Point<dim>> &x, const contact::NodeState<dim> &state,
+    const contact::FrictionLaw &law, contact::ContactResult<dim> &result,
+    std::vector<std::pair<unsigned int, unsigned int>> &beyond_end) const
+  {
+    const Pair &pair      = pairs[p];
+    int         best_face = -1;
+    for (const auto f : candidates)
+      {
+        if (!may_touch(p, n, f, x))
+          continue;
+        std::vector<Point<dim>> xm, xm_old;
+        face_positions(f, x, xm, xm_old);
+        auto r = contact::node_to_segment(x[n], x_old[n], xm, xm_old, state, law,
+                                          false);
+        if (!r.projection_inside)
+          {
+            // Behind the face's line and beyond its end: a side
+            // of a concave corner, if another face shares the vertex.
+            if (dim == 2 && r.gap < 0 &&
+                !(pair.self && -r.gap > 1.5 * penetration_limit))
+              beyond_end.emplace_back(f, r.xi[0] < 0 ? 0u : 1u);
+            continue;
+          }
+        // Self-contact: a node deeper behind a face of its own
+        // surface than 1.5 penetration limits is seeing it through
+        // the wall (the other skin of a thin wall), not touching it;
+        // a step reaching the limit is cut back before this matters.
+        if (pair.self && -r.gap > 1.5 * penetration_limit)
+          continue;
+        if (best_face < 0 || std::abs(r.gap) < std::abs(result.gap))
+          {
+            result    = std::move(r);
+            best_face = f;
+          }
+      }
+    return best_face;
+  }
+
+  template <int dim>
+  int ContactProblem<dim>::free_end_face(
+    const unsigned int p, const unsigned int pass, const unsigned int n,
+    const std::vector<std::pair<unsigned int, unsigned int>> &beyond_end,
+    const std::vector<Point<dim>> &x, const contact::NodeState<dim> &state,
+    const contact::FrictionLaw &law, const bool with_matrix, int best_face,
+    contact::ContactResult<dim> &result) const
+  {
+    // Beyond a free end of the master surface: its end segment extended,
+    // tapered (free_end_contact; 2D only, 3D facet edges are sharp).
+    int found = -1;
+    if constexpr (dim == 2)
+      for (const auto &[f, end] : beyond_end)
+        {
+          const unsigned int v    = faces[f].nodes[end];
+          bool               free = true;
+          for (const auto g : node_faces[v])
+            free = free && (g == f || !master_side(p, pass).has(faces[g]));
+          if (!free)
+            continue;
+          std::vector<Point<dim>> xm, xm_old;
+          face_positions(f, x, xm, xm_old);
+          auto r = contact::free_end_contact(x[n], x_old[n], xm, xm_old, end, state, law,
+                                             with_matrix, pairs[p].end_taper);
+          if (r.in_contact && (best_face < 0 || std::abs(r.gap) < std::abs(result.gap)))
+            {
+              result    = std::move(r);
+              best_face = f;
+              found     = f;
+            }
+        }
+    return found;
+  }
+
+  template <int dim>
   bool ContactProblem<dim>::assemble(const Vector &u, const bool with_matrix, const Adder &add)
   {
     std::vector<Point<dim>> &x = x_last;
@@ -355,15 +442,6 @@ namespace anvil
     bool   missing     = false;
     double penetration = 0;
     trials.clear();
-    // A master face's nodes now and at t_n.
-    const auto face_positions = [&](const unsigned int f, std::vector<Point<dim>> &xm,
-                                    std::vector<Point<dim>> &xm_old) {
-      for (const auto m : faces[f].nodes)
-        {
-          xm.push_back(x[m]);
-          xm_old.push_back(x_old[m]);
-        }
-    };
     for (unsigned int p = 0; p < pairs.size(); ++p)
       {
         const Pair &pair = pairs[p];
@@ -395,69 +473,22 @@ namespace anvil
                                                  state, law, with_matrix);
                 else
                   {
-                    // The closest master face the node projects into.
-                    int best_face = -1;
                     std::vector<std::pair<unsigned int, unsigned int>> beyond_end; // (face, its end)
+                    int best_face = closest_face(p, n, candidates[n], x, state, law, result, beyond_end);
                     bool extended = false; // best_face is an end segment extended (free_end_contact)
-                    for (const auto f : candidates[n])
-                      {
-                        if (!may_touch(p, n, f, x))
-                          continue;
-                        std::vector<Point<dim>> xm, xm_old;
-                        face_positions(f, xm, xm_old);
-                        auto r = contact::node_to_segment(x[n], x_old[n], xm, xm_old, state, law,
-                                                          false);
-                        if (!r.projection_inside)
-                          {
-                            // Behind the face's line and beyond its end: a side
-                            // of a concave corner, if another face shares the vertex.
-                            if (dim == 2 && r.gap < 0 &&
-                                !(pair.self && -r.gap > 1.5 * penetration_limit))
-                              beyond_end.emplace_back(f, r.xi[0] < 0 ? 0u : 1u);
-                            continue;
-                          }
-                        // Self-contact: a node deeper behind a face of its own
-                        // surface than 1.5 penetration limits is seeing it through
-                        // the wall (the other skin of a thin wall), not touching it;
-                        // a step reaching the limit is cut back before this matters.
-                        if (pair.self && -r.gap > 1.5 * penetration_limit)
-                          continue;
-                        if (best_face < 0 || std::abs(r.gap) < std::abs(result.gap))
-                          {
-                            result    = std::move(r);
-                            best_face = f;
-                          }
-                      }
                     if (best_face < 0)
                       {
                         const auto corner = concave_corner(beyond_end);
-                        if constexpr (dim == 2)
-                          if (corner.first < 0)
-                            {
-                              // Beyond a free end of the master surface: its end
-                              // segment extended, tapered (free_end_contact).
-                              for (const auto &[f, end] : beyond_end)
-                                {
-                                  const unsigned int v    = faces[f].nodes[end];
-                                  bool               free = true;
-                                  for (const auto g : node_faces[v])
-                                    free = free && (g == f || !master_side(p, pass).has(faces[g]));
-                                  if (!free)
-                                    continue;
-                                  std::vector<Point<dim>> xm, xm_old;
-                                  face_positions(f, xm, xm_old);
-                                  auto r = contact::free_end_contact(x[n], x_old[n], xm, xm_old, end,
-                                                                     state, law, with_matrix,
-                                                                     pair.end_taper);
-                                  if (r.in_contact &&
-                                      (best_face < 0 || std::abs(r.gap) < std::abs(result.gap)))
-                                    {
-                                      result    = std::move(r);
-                                      best_face = f;
-                                      extended  = true;
-                                    }
-                                }
-                            }
+                        if (corner.first < 0)
+                          {
+                            const int f = free_end_face(p, pass, n, beyond_end, x, state, law,
+                                                        with_matrix, best_face, result);
+                            if (f >= 0)
+                              {
+                                best_face = f;
+                                extended  = true;
+                              }
+                          }
                         if (corner.first >= 0)
                           {
                             const unsigned int v = faces[corner.first].nodes[corner.second];
@@ -483,7 +514,7 @@ namespace anvil
                       {
                         // The tangent for the face kept only.
                         std::vector<Point<dim>> xm, xm_old;
-                        face_positions(best_face, xm, xm_old);
+                        face_positions(best_face, x, xm, xm_old);
                         result = contact::node_to_segment(x[n], x_old[n], xm, xm_old, state, law, true);
                       }
                     if (best_face >= 0 && result.in_contact)

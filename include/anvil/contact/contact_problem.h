@@ -248,6 +248,25 @@ namespace anvil
     /// vertex another shares (the node is below a concave corner); face -1: none.
     std::pair<int, unsigned int>
     concave_corner(const std::vector<std::pair<unsigned int, unsigned int>> &beyond_end) const;
+    /// The closest master face of pair @p p (among @p candidates) that slave node
+    /// @p n projects into (its element, no tangent, in @p result), or -1; the
+    /// (face, end) pairs the node lies behind and beyond in @p beyond_end (2D).
+    int closest_face(unsigned int p, unsigned int n, const std::vector<unsigned int> &candidates,
+                     const std::vector<dealii::Point<dim>> &x, const contact::NodeState<dim> &state,
+                     const contact::FrictionLaw &law, contact::ContactResult<dim> &result,
+                     std::vector<std::pair<unsigned int, unsigned int>> &beyond_end) const;
+    /// 2D: among @p beyond_end, an end segment at a free end of the master
+    /// surface that carries node @p n (free_end_contact, closer than
+    /// @p best_face's @p result, which it then replaces), or -1.
+    int free_end_face(unsigned int p, unsigned int pass, unsigned int n,
+                      const std::vector<std::pair<unsigned int, unsigned int>> &beyond_end,
+                      const std::vector<dealii::Point<dim>> &x, const contact::NodeState<dim> &state,
+                      const contact::FrictionLaw &law, bool with_matrix, int best_face,
+                      contact::ContactResult<dim> &result) const;
+    /// Face @p f's nodes at @p x and at t_n.
+    void face_positions(unsigned int f, const std::vector<dealii::Point<dim>> &x,
+                        std::vector<dealii::Point<dim>> &xm,
+                        std::vector<dealii::Point<dim>> &xm_old) const;
     /// Node states keyed by (pair, pass, node).
     using Key = std::tuple<unsigned int, unsigned int, unsigned int>;
     struct Trial
