@@ -76,14 +76,15 @@ namespace anvil
           setup_matrix();
       }
 
-    const bool has_jump = predict(time_old, time_new, from_last_solution);
+    // K and R already assembled at the current iterate (by the predictor's
+    // check of the extrapolated state, or the line search's full-step trial):
+    // the iteration costs one assembly, not one plus a residual evaluation at
+    // the same state.
+    bool       assembled = false;
+    const bool has_jump  = predict(time_old, time_new, from_last_solution, &assembled);
 
     TrilinosWrappers::MPI::Vector du(locally_owned_dofs, mpi_communicator);
     double last_increment = -1;
-    // K and R already assembled at the current iterate (by the line search's
-    // full-step trial): the iteration costs one assembly, not one plus a
-    // residual evaluation at the same state.
-    bool assembled = false;
     // When the next test will almost surely converge (quadratic phase, see
     // likely_converged below), the full step's state is evaluated for its
     // residual only, and the matrix assembled only if that test fails after
@@ -197,7 +198,7 @@ namespace anvil
 
   template <int dim>
   bool MechanicalProblem<dim>::predict(const double time_old, const double time_new,
-                                       const bool from_last_solution)
+                                       const bool from_last_solution, bool *assembled)
   {
     // Predictor: the first Newton iteration starts from the committed
     // configuration and imposes the jump of the prescribed displacements as
@@ -213,14 +214,40 @@ namespace anvil
     // which already satisfies the step's boundary values.
     if (!from_last_solution)
       owned_solution = owned_old_solution;
-    if (!from_last_solution && parameters.extrapolate && previous_time_step > 0)
-      {
-        owned_solution.add(current_time_step / previous_time_step, previous_increment);
-        solution = owned_solution;
-        if (!assemble(false, time_new))
-          owned_solution = owned_old_solution;
-      }
+    const bool extrapolate =
+      !from_last_solution && parameters.extrapolate && previous_time_step > 0;
+    if (extrapolate)
+      owned_solution.add(current_time_step / previous_time_step, previous_increment);
     solution = owned_solution;
+    build_predictor_constraints(time_old, time_new);
+    if (extrapolate)
+      {
+        // The check of the extrapolated state is the first iteration's
+        // assembly when the caller takes it (@p assembled): the same state
+        // and constraints.
+        const bool with_matrix = assembled != nullptr;
+        if (assemble(with_matrix, time_new))
+          {
+            if (assembled)
+              *assembled = true;
+          }
+        else
+          {
+            owned_solution = owned_old_solution;
+            solution       = owned_solution;
+            build_predictor_constraints(time_old, time_new); // the jump from u_n
+          }
+      }
+    double largest_jump = 0;
+    for (const auto &line : predictor_constraints.get_lines())
+      largest_jump = std::max(largest_jump, std::abs(line.inhomogeneity));
+    return Utilities::MPI::max(largest_jump, mpi_communicator) > 0;
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::build_predictor_constraints(const double time_old,
+                                                           const double time_new)
+  {
     predictor_constraints.clear();
     predictor_constraints.reinit(constraint_lines);
     DoFTools::make_hanging_node_constraints(dof_handler, predictor_constraints);
@@ -246,10 +273,6 @@ namespace anvil
     add_remote_constraints(predictor_constraints);
     predictor_constraints.close();
     active_constraints = &predictor_constraints;
-    double largest_jump = 0;
-    for (const auto &line : predictor_constraints.get_lines())
-      largest_jump = std::max(largest_jump, std::abs(line.inhomogeneity));
-    return Utilities::MPI::max(largest_jump, mpi_communicator) > 0;
   }
 
   template <int dim>
@@ -358,7 +381,8 @@ namespace anvil
   template double MechanicalProblem<dim>::tangent_error();                                       \
   template typename MechanicalProblem<dim>::StepResult MechanicalProblem<dim>::solve_step(       \
     double, double, bool);                                                                       \
-  template bool   MechanicalProblem<dim>::predict(double, double, bool);                         \
+  template bool   MechanicalProblem<dim>::predict(double, double, bool, bool *);                 \
+  template void   MechanicalProblem<dim>::build_predictor_constraints(double, double);          \
   template double MechanicalProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &,     \
                                                       bool, double, bool &);                     \
   template void   MechanicalProblem<dim>::revert_step();                                          \

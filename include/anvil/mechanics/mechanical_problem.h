@@ -303,8 +303,12 @@ namespace anvil
     bool assemble_contact(bool with_matrix);
     /// The first iterate of a step (extrapolated, or the last solution) and
     /// the predictor constraints imposing the step's boundary values; true if
-    /// they jump (then the first update is taken whole).
-    bool predict(double time_old, double time_new, bool from_last_solution);
+    /// they jump (then the first update is taken whole). With @p assembled,
+    /// the check of an extrapolated iterate assembles K too and sets it true.
+    bool predict(double time_old, double time_new, bool from_last_solution,
+                 bool *assembled = nullptr);
+    /// predictor_constraints at the current solution; they become active.
+    void build_predictor_constraints(double time_old, double time_new);
     /// Step length α of the Newton update @p du (Crisfield's energy line
     /// search); leaves the solution at u + α du. @p full_step: α = 1.
     /// @p assembled: set true if K and R are left assembled at that solution.
