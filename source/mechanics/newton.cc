@@ -90,6 +90,11 @@ namespace anvil
     // residual only, and the matrix assembled only if that test fails after
     // all: the matrix of the last evaluation of a step is never used.
     bool residual_only = false;
+    // A step like the last one, which converged at its first update (a
+    // linear response to the boundary jump), will likely too: its first test
+    // is on the residual alone, as in the quadratic phase.
+    const bool one_update_expected = last_step_iterations == 1;
+    last_step_iterations           = 0;
     for (unsigned int it = 0;; ++it)
       {
         if (!assembled && !assemble(!residual_only, time_new))
@@ -148,8 +153,9 @@ namespace anvil
           r <= 1e3 * parameters.residual_tolerance * scale;
         if ((residual_ok && (increment_ok || it == 0) && !(it == 0 && has_jump)) || stagnated)
           {
-            result.converged  = true;
-            result.iterations = it;
+            result.converged     = true;
+            result.iterations    = it;
+            last_step_iterations = it;
             return result;
           }
         if (it >= parameters.max_iterations)
@@ -192,7 +198,8 @@ namespace anvil
         // Near convergence (and on the round-off floor) s(α) is noise.
         result.line_search_steps.push_back(line_search(
           du, (it == 0 && has_jump) || residual_ok || likely_converged, time_new, assembled));
-        residual_only = (residual_ok || likely_converged) && !assembled;
+        residual_only =
+          (residual_ok || likely_converged || (it == 0 && one_update_expected)) && !assembled;
       }
   }
 

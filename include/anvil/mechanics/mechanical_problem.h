@@ -400,6 +400,7 @@ namespace anvil
     double assembly_rate = 0;
     double current_time_step = 1, current_time = 0, previous_time_step = 0, mesh_diameter = 1;
     dealii::TrilinosWrappers::MPI::Vector previous_increment; // Δu of the last accepted step
+    unsigned int last_step_iterations = 0; // Newton iterations of the last converged solve_step
     // Checkpoint transfer (alive between prepare and the triangulation's save).
     std::unique_ptr<dealii::parallel::distributed::SolutionTransfer<dim, dealii::TrilinosWrappers::MPI::Vector>>
                                                        checkpoint_transfer;
