@@ -404,9 +404,11 @@ namespace anvil
       double       s[6]; // dev(trial)
       for (unsigned int c = 0; c < 6; ++c)
         s[c] = c < 3 ? trial[c] - mean_trial : trial[c];
-      const double norm_s = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2] +
-                                      2 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
-      const double q_trial = std::sqrt(1.5) * norm_s;
+      const double norm2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] +
+                           2 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+      // |dev σ_tr| and q_tr = √(3/2)|dev σ_tr| only where the yield test can
+      // pass: the square root is the longest latency of the elastic update.
+      double norm_s = 0, q_trial = 0;
 
       double              dp = 0, H = 0;
       HardeningLaw::Value Y, Y_start;
@@ -420,6 +422,13 @@ namespace anvil
             throw MaterialPointError("the yield stress is " + std::to_string(Y.stress) +
                                      " MPa <= 0 at T = " + std::to_string(T) +
                                      " K (thermal softening removed all strength)");
+          // q_tr² against σᵥ² first, with a margin far above the rounding
+          // of either side: the test on q_tr itself decides, as ever.
+          if (1.5 * norm2 > (1 - 1e-10) * (Y.stress * Y.stress))
+            {
+              norm_s  = std::sqrt(norm2);
+              q_trial = std::sqrt(1.5) * norm_s;
+            }
           if (q_trial > Y.stress)
             {
               rate = model.viscosity.at(T, inc.time_step);
@@ -448,12 +457,14 @@ namespace anvil
         }
 
       // Radial return: σ = trial − √6 G Δε̄ n, n = s/|s|.
-      double n[6];
-      {
-        const double inv_norm = norm_s > 0 ? 1 / norm_s : 0.;
-        for (unsigned int c = 0; c < 6; ++c)
-          n[c] = s[c] * inv_norm;
-      }
+      // n enters only through Δε̄ > 0 terms (elastic: zero, as for |s| = 0).
+      double n[6] = {0, 0, 0, 0, 0, 0};
+      if (dp > 0)
+        {
+          const double inv_norm = 1 / norm_s;
+          for (unsigned int c = 0; c < 6; ++c)
+            n[c] = s[c] * inv_norm;
+        }
       double *sigma = response.stress.begin_raw();
       if (dp > 0)
         {
