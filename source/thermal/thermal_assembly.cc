@@ -222,12 +222,15 @@ namespace anvil
         assemble_step_sources();
         sources_current = true;
       }
-    {
-      Vector owned(y);
-      hanging.distribute(owned);
-      // The tangent keeps the Dirichlet columns: −K y includes −K_fD y_D.
-      tangent_matrix.vmult(rhs, owned);
-    }
+    // The tangent keeps the Dirichlet columns: −K y includes −K_fD y_D.
+    if (has_hanging)
+      {
+        Vector owned(y);
+        hanging.distribute(owned);
+        tangent_matrix.vmult(rhs, owned);
+      }
+    else // no copy (distribute() imports a ghosted vector even with no lines)
+      tangent_matrix.vmult(rhs, y);
     rhs *= -1.;
     rhs += step_sources;
     if (exchange.add_rhs)
