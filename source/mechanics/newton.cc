@@ -17,6 +17,34 @@ namespace anvil
 {
   using namespace dealii;
 
+  namespace
+  {
+    /// The line search's full-step trial (it keeps α = 1 when |s(1)| <= 0.8
+    /// |s(0)|, s(α) = δu · R(u + α δu)) on the residual alone. True: u + δu
+    /// kept with R evaluated there; false: u restored, the line search as ever.
+    template <typename EvaluateResidual>
+    bool full_step_on_residual(TrilinosWrappers::MPI::Vector       &u,
+                               TrilinosWrappers::MPI::Vector       &u_ghosted,
+                               const TrilinosWrappers::MPI::Vector &du,
+                               const TrilinosWrappers::MPI::Vector &rhs,
+                               EvaluateResidual                   &&evaluate_residual)
+    {
+      const double                        s0      = -(du * rhs);
+      const TrilinosWrappers::MPI::Vector u_start = u;
+      u.add(1., du);
+      u_ghosted = u;
+      if (evaluate_residual())
+        {
+          const double s1 = -(du * rhs);
+          if (std::isfinite(s1) && std::abs(s1) <= 0.8 * std::abs(s0))
+            return true;
+        }
+      u         = u_start;
+      u_ghosted = u;
+      return false;
+    }
+  } // namespace
+
   template <int dim>
   std::string MechanicalProblem<dim>::material_failure_message() const
   {
@@ -91,17 +119,20 @@ namespace anvil
     // all: the matrix of the last evaluation of a step is never used.
     bool residual_only = false;
     // A step like the last one, which converged at its first update (a
-    // linear response to the boundary jump), will likely too: its first test
-    // is on the residual alone, as in the quadratic phase.
+    // nearly linear response), will likely too: the line search's trial of
+    // that update and the convergence test after it are on the residual
+    // alone, as in the quadratic phase (K only if the test fails).
     const bool one_update_expected = last_step_iterations == 1;
     last_step_iterations           = 0;
+    bool residual_ready            = false; // R (not K) already at the iterate
     for (unsigned int it = 0;; ++it)
       {
-        if (!assembled && !assemble(!residual_only, time_new))
+        if (!assembled && !residual_ready && !assemble(!residual_only, time_new))
           {
             result.failure = material_failure_message();
             return result;
           }
+        residual_ready = false;
         const double r = residual_norm();
         if (!std::isfinite(r))
           {
@@ -196,8 +227,17 @@ namespace anvil
                                                        parameters.residual_tolerance * scale);
         // The first update carries the boundary jump: take it whole.
         // Near convergence (and on the round-off floor) s(α) is noise.
-        result.line_search_steps.push_back(line_search(
-          du, (it == 0 && has_jump) || residual_ok || likely_converged, time_new, assembled));
+        const bool full_step = (it == 0 && has_jump) || residual_ok || likely_converged;
+        if (it == 0 && one_update_expected && !full_step && parameters.line_search)
+          residual_ready = full_step_on_residual(owned_solution, solution, du, system_rhs,
+                                                 [&] { return assemble(false, time_new); });
+        if (residual_ready)
+          {
+            result.line_search_steps.push_back(1.);
+            assembled = false;
+          }
+        else
+          result.line_search_steps.push_back(line_search(du, full_step, time_new, assembled));
         residual_only =
           (residual_ok || likely_converged || (it == 0 && one_update_expected)) && !assembled;
       }
