@@ -76,14 +76,14 @@ namespace anvil
           setup_matrix();
       }
 
-    const bool has_jump = predict(time_old, time_new, from_last_solution);
+    // K and R already assembled at the current iterate (by the predictor's
+    // check or the line search's full-step trial): the iteration costs one
+    // assembly, not one plus a residual evaluation at the same state.
+    bool       assembled = false;
+    const bool has_jump  = predict(time_old, time_new, from_last_solution, &assembled);
 
     TrilinosWrappers::MPI::Vector du(locally_owned_dofs, mpi_communicator);
     double last_increment = -1;
-    // K and R already assembled at the current iterate (by the line search's
-    // full-step trial): the iteration costs one assembly, not one plus a
-    // residual evaluation at the same state.
-    bool assembled = false;
     // When the next test will almost surely converge (quadratic phase, see
     // likely_converged below), the full step's state is evaluated for its
     // residual only, and the matrix assembled only if that test fails after
@@ -197,7 +197,7 @@ namespace anvil
 
   template <int dim>
   bool MechanicalProblem<dim>::predict(const double time_old, const double time_new,
-                                       const bool from_last_solution)
+                                       const bool from_last_solution, bool *assembled)
   {
     // Predictor: the first Newton iteration starts from the committed
     // configuration and imposes the jump of the prescribed displacements as
@@ -208,19 +208,39 @@ namespace anvil
     // The free dofs start from the last step's increment scaled to this step
     // (linear extrapolation in time), which puts yielding points on their
     // plastic branch from the first iteration; if that inverts an element,
-    // from the committed configuration.
+    // from the committed configuration. The check that it does not is an
+    // assembly at the extrapolated state with the constraints that go with
+    // it: when the caller asks (solve_step), with the matrix, and it is the
+    // first Newton iteration's (one evaluation per step fewer).
     // Again on the same step (iterated staggered): from the last solution,
     // which already satisfies the step's boundary values.
+    if (assembled)
+      *assembled = false;
     if (!from_last_solution)
       owned_solution = owned_old_solution;
+    solution = owned_solution;
     if (!from_last_solution && parameters.extrapolate && previous_time_step > 0)
       {
         owned_solution.add(current_time_step / previous_time_step, previous_increment);
-        solution = owned_solution;
-        if (!assemble(false, time_new))
-          owned_solution = owned_old_solution;
+        solution           = owned_solution;
+        const bool jump    = make_predictor_constraints(time_old, time_new);
+        const bool with_K  = assembled != nullptr;
+        if (assemble(with_K, time_new))
+          {
+            if (with_K)
+              *assembled = true;
+            return jump;
+          }
+        owned_solution = owned_old_solution;
+        solution       = owned_solution;
       }
-    solution = owned_solution;
+    return make_predictor_constraints(time_old, time_new);
+  }
+
+  template <int dim>
+  bool MechanicalProblem<dim>::make_predictor_constraints(const double time_old,
+                                                          const double time_new)
+  {
     predictor_constraints.clear();
     predictor_constraints.reinit(constraint_lines);
     DoFTools::make_hanging_node_constraints(dof_handler, predictor_constraints);
@@ -358,7 +378,8 @@ namespace anvil
   template double MechanicalProblem<dim>::tangent_error();                                       \
   template typename MechanicalProblem<dim>::StepResult MechanicalProblem<dim>::solve_step(       \
     double, double, bool);                                                                       \
-  template bool   MechanicalProblem<dim>::predict(double, double, bool);                         \
+  template bool   MechanicalProblem<dim>::predict(double, double, bool, bool *);                 \
+  template bool   MechanicalProblem<dim>::make_predictor_constraints(double, double);            \
   template double MechanicalProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &,     \
                                                       bool, double, bool &);                     \
   template void   MechanicalProblem<dim>::revert_step();                                          \

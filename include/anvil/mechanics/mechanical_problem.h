@@ -303,8 +303,15 @@ namespace anvil
     bool assemble_contact(bool with_matrix);
     /// The first iterate of a step (extrapolated, or the last solution) and
     /// the predictor constraints imposing the step's boundary values; true if
-    /// they jump (then the first update is taken whole).
-    bool predict(double time_old, double time_new, bool from_last_solution);
+    /// they jump (then the first update is taken whole). With @p assembled,
+    /// the extrapolation's check is the first iteration's assembly (K and R
+    /// at the iterate, the constraints active), and *@p assembled says
+    /// whether they are left there.
+    bool predict(double time_old, double time_new, bool from_last_solution,
+                 bool *assembled = nullptr);
+    /// The predictor constraints for the current solution (the jump of the
+    /// prescribed values from it), made active; true if anything jumps.
+    bool make_predictor_constraints(double time_old, double time_new);
     /// Step length α of the Newton update @p du (Crisfield's energy line
     /// search); leaves the solution at u + α du. @p full_step: α = 1.
     /// @p assembled: set true if K and R are left assembled at that solution.
