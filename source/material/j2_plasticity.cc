@@ -79,10 +79,9 @@ namespace anvil
         const bool            tangent = request & request_tangent;
         const MaterialRequest inner =
           tangent ? request | request_temperature_derivative : request;
-        // Every iterate with the tangent (the stress and ΔT_ad do not depend on
-        // the request): the last one is at the converged x, so its tangent is
-        // the one wanted and no extra return map is needed for it (the tangent
-        // costs far less than a return map).
+        // The iterates need the stress and ΔT_ad only (neither depends on the
+        // request); the tangent is computed once, at the converged x.
+        const MaterialRequest iterate = static_cast<MaterialRequest>(request & ~request_tangent);
         // From this point's last ΔT_ad (the previous Newton iterate's, or the
         // previous step's): within Newton the state moves little, so the
         // first residual is already small and the secant needs fewer return
@@ -91,7 +90,7 @@ namespace anvil
         for (unsigned int it = 0; it < 50; ++it)
           {
             compute(increment, increment.temperature + x1, increment.temperature_increment + x1,
-                    inner, response);
+                    iterate, response);
             f1 = response.adiabatic_temperature_increment - x1;
             if (std::abs(f1) <= 1e-12 * (1 + std::abs(x1)))
               break;
@@ -102,6 +101,9 @@ namespace anvil
             if (it == 49)
               throw MaterialPointError("the adiabatic temperature change did not converge");
           }
+        if (tangent)
+          compute(increment, increment.temperature + x1, increment.temperature_increment + x1,
+                  inner, response);
         response.adiabatic_temperature_increment = x1;
         adiabatic_guess                          = x1;
         if (tangent)
