@@ -222,9 +222,9 @@ namespace anvil
     if (!from_last_solution && parameters.extrapolate && previous_time_step > 0)
       {
         owned_solution.add(current_time_step / previous_time_step, previous_increment);
-        solution           = owned_solution;
-        const bool jump    = make_predictor_constraints(time_old, time_new);
-        const bool with_K  = assembled != nullptr;
+        solution          = owned_solution;
+        const bool jump   = make_predictor_constraints(time_old, time_new);
+        const bool with_K = assembled != nullptr;
         if (assemble(with_K, time_new))
           {
             if (with_K)
