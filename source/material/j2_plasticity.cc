@@ -82,7 +82,11 @@ namespace anvil
         // The iterates need the stress and ΔT_ad only (neither depends on the
         // request); the tangent is computed once, at the converged x.
         const MaterialRequest iterate = static_cast<MaterialRequest>(request & ~request_tangent);
-        double x0 = 0, f0 = 0, x1 = 0, f1 = 0;
+        // From this point's last ΔT_ad (the previous Newton iterate's, or the
+        // previous step's): within Newton the state moves little, so the
+        // first residual is already small and the secant needs fewer return
+        // maps than from 0.
+        double x0 = 0, f0 = 0, x1 = adiabatic_guess, f1 = 0;
         for (unsigned int it = 0; it < 50; ++it)
           {
             compute(increment, increment.temperature + x1, increment.temperature_increment + x1,
@@ -101,6 +105,7 @@ namespace anvil
           compute(increment, increment.temperature + x1, increment.temperature_increment + x1,
                   inner, response);
         response.adiabatic_temperature_increment = x1;
+        adiabatic_guess                          = x1;
         if (tangent)
           {
             // Consistent tangent of the adiabatic update: with x = f(Δε, σ̃ₙ, x),
@@ -187,6 +192,10 @@ namespace anvil
       double                eps_n = 0, eps_c = 0;
       // ∂ΔT_ad/∂Δε and ∂ΔT_ad/∂σ̃ₙ at fixed temperature (adiabatic tangent).
       SymmetricTensor<2, 3> adiabatic_strain_derivative, adiabatic_stress_derivative;
+      // The last ΔT_ad found: the start of the next fixed-point iteration
+      // (a start only: the converged value does not depend on it beyond the
+      // iteration's 1e-12 tolerance).
+      double adiabatic_guess = 0;
     };
 
     MaterialPointError no_plastic_solution(const double T)
