@@ -6,7 +6,7 @@ against answers that do not use it:
     (tests/algorithmic_dissipation.prm): an oscillator with the closed-form
     k = E(1 - nu)/((1 + nu)(1 - 2 nu)) and m = rho h^2/3 (consistent mass,
     uniform strain). The scheme's own recurrence for that oscillator
-    (Chung & Hulbert 1993, eq. 2-7, written out below in a few lines) gives
+    (Chung & Hulbert 1993, written out below in a few lines) gives
     the energy E_n = 1/2 m v_n^2 + 1/2 k u_n^2 at every step; the column must
     be E_0 - E_n at every step (rho_inf = 0, 0.5 and 0.8, omega dt = 1 and 0.5).
  b. The amplitude decay of the scheme's principal root: after the start-up,

@@ -59,8 +59,8 @@ namespace anvil
     const TrilinosWrappers::MPI::Vector &v_new) const
   {
     // Eq. A3 (doc/energy_audit.md): with ⟨x⟩ = ½(xₙ + xₙ₊₁), [x] = xₙ₊₁ − xₙ,
-    // r = f_int (with contact) − f_ext, and the step's Newmark relations
-    // (Chung & Hulbert 1993, eq. 2–3) and generalized-α balance (eq. 4–7),
+    // r = f_int (with contact) − f_ext, the step's Newmark update and the
+    // α-shifted balance of the free dofs (Chung & Hulbert 1993),
     //   D = (½ − α_f) (Δt ⟨v⟩ᵀM[a] + [r]·Δu|free)
     //     + (β − γ/2) Δt² (⟨a⟩ᵀM[a] + (½ − α_m)[a]ᵀM[a])
     //     − (½ − α_m) (M[a])·Δu|supports,
