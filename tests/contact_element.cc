@@ -16,7 +16,14 @@
 //  5. objectivity: a rigid rotation of the whole configuration rotates the
 //     residual and the tangent and leaves g_N and |t_T| unchanged;
 //  6. a master (or a tool) moving with the slave produces no tangential force;
-//  7. face_order_gives_outward_normal() against the faces of deal.II cells.
+//  7. face_order_gives_outward_normal() against the faces of deal.II cells;
+//  8. node to vertex below a concave corner;
+//  9. beyond a free facet edge (3D taper, free_edge_contact): the tangent
+//     (with the taper's derivative through the closest point) against central
+//     differences on a flat and a warped facet, stick and slide, across every
+//     edge; the force equals the facet's own at the parameter tolerance and is
+//     zero past the taper; on an extruded flat facet the slave's force equals
+//     the 2D tapered end segment's (free_end_contact).
 // Prints the numbers; returns nonzero on failure.
 #include <deal.II/base/geometry_info.h>
 #include <deal.II/base/parameter_handler.h>
@@ -26,6 +33,7 @@
 #include <deal.II/grid/tria.h>
 
 #include <anvil/contact/contact_element.h>
+#include <anvil/contact/free_end.h>
 #include <anvil/contact/rigid_tool.h>
 #include <anvil/core/input_error.h>
 #include <anvil/core/scene.h>
@@ -882,6 +890,87 @@ namespace
                                              evaluator(Point<2>(0.0100, -0.0401), v, old, law), false));
     return worst;
   }
+
+  /// Part 9: the tapered facet beyond a free edge (doc/contact.md, "Free ends").
+  double test_free_edge()
+  {
+    std::cout << "9. Beyond a free facet edge (3D taper)" << std::endl;
+    const FrictionLaw law   = seed_law();
+    double            worst = 0;
+    const double      tol = end_tolerance, taper = default_end_taper;
+    for (const bool warped : {false, true})
+      for (unsigned int edge = 0; edge < 4; ++edge)
+        for (const bool slide : {false, true})
+          {
+            std::vector<Point<3>> master = {Point<3>(0, 0, 0), Point<3>(1, 0, 0), Point<3>(0, 1, 0), Point<3>(1, 1, 0)};
+            if (warped)
+              master = {Point<3>(0, 0, 0.05), Point<3>(1.1, -0.05, 0), Point<3>(-0.05, 0.95, -0.1), Point<3>(1.05, 1.1, 0.25)};
+            std::vector<Point<3>> master_old = master;
+            for (unsigned int a = 0; a < 4; ++a)
+              master_old[a] += Tensor<1, 3>({0.0002 * a, -0.0004, 0.0001 * a});
+            // 0.02 facet parameters beyond edge 2k + e (inside the taper), 0.6 along it.
+            const unsigned int k = edge / 2;
+            double             st[2];
+            st[k]     = edge % 2 == 0 ? -0.02 : 1.02;
+            st[1 - k] = 0.6;
+            const Point<3> on_surface = facet_point(master, st[0], st[1]);
+            const auto     probe = node_to_segment(on_surface, on_surface, master, master_old, NodeState<3>(), law, false);
+            const Point<3> slave = on_surface - (probe.gap + 0.01) * probe.normal;
+            const Point<3> slave_old =
+              slave - (slide ? Tensor<1, 3>({0.02, -0.01, 0.003}) : Tensor<1, 3>({0.0003, -0.0011, 0.0002}));
+            NodeState<3> state;
+            state.in_contact       = true;
+            state.tangential_force = Tensor<1, 3>({0.5, -0.7, 0.1});
+            const Evaluator<3> f   = [=](const std::vector<double> &x, const bool tangent) {
+              std::vector<Point<3>> m(4);
+              for (unsigned int a = 0; a < 4; ++a)
+                m[a] = Point<3>(x[3 + 3 * a], x[4 + 3 * a], x[5 + 3 * a]);
+              return free_edge_contact(Point<3>(x[0], x[1], x[2]), slave_old, m, master_old, edge, state, law,
+                                       tangent);
+            };
+            worst = std::max(worst, tangent_error<3>(std::string(warped ? "warped" : "flat") + " facet, edge " +
+                                                       std::to_string(edge) + (slide ? " slide" : " stick"),
+                                                     flatten(slave, master), f, slide));
+          }
+
+    // Continuity at the tolerance, nothing past the taper (flat facet, edge ξ = 1).
+    const std::vector<Point<3>> flat = {Point<3>(0, 0, 0), Point<3>(1, 0, 0), Point<3>(0, 1, 0), Point<3>(1, 1, 0)};
+    const auto at = [&](const double xi) { return Point<3>(xi, 0.4, -0.01); };
+    const Point<3> inside = at(1 + 0.999 * tol), just_beyond = at(1 + 1.001 * tol);
+    const auto by_facet = node_to_segment(inside, inside, flat, flat, NodeState<3>(), law, false);
+    const auto by_taper = free_edge_contact(just_beyond, just_beyond, flat, flat, 1, NodeState<3>(), law, false);
+    std::cout << "  at the tolerance: t_N " << by_facet.normal_force << " (facet) / " << by_taper.normal_force
+              << " (taper)" << std::endl;
+    check(by_facet.in_contact && by_taper.in_contact &&
+            std::abs(by_facet.normal_force - by_taper.normal_force) < 1e-6 * by_facet.normal_force,
+          "free edge: the taper continues the facet's force at the tolerance");
+    check(!free_edge_contact(at(1 + tol + 1.01 * taper), at(1 + tol + 1.01 * taper), flat, flat, 1, NodeState<3>(),
+                             law, false).in_contact,
+          "free edge: no contact past the taper");
+    check(!free_edge_contact(at(1 + tol + 0.5 * taper), at(1 + tol + 0.5 * taper), flat, flat, 0, NodeState<3>(),
+                             law, false).in_contact,
+          "free edge: no contact beyond the opposite edge's side");
+
+    // The extruded facet against the 2D tapered end segment, at w ∈ (0, 1).
+    const double              beyond = 1 + tol + 0.3 * taper;
+    const std::vector<Point<2>> segment = {Point<2>(0, 0), Point<2>(1, 0)};
+    const Point<2>            slave2(beyond, -0.01), slave2_old(beyond - 0.0004, -0.01);
+    // The segment extruded along z: ξ along x, η along −z, so that
+    // x_ξ × x_η = +y is the segment's left normal.
+    const std::vector<Point<3>> extruded = {Point<3>(0, 0, 1), Point<3>(1, 0, 1), Point<3>(0, 0, 0), Point<3>(1, 0, 0)};
+    const Point<3>            slave3(beyond, -0.01, 0.5), slave3_old(beyond - 0.0004, -0.01, 0.5);
+    const auto r2 = free_end_contact(slave2, slave2_old, segment, segment, 1, NodeState<2>(), law, false);
+    const auto r3 = free_edge_contact(slave3, slave3_old, extruded, extruded, 1, NodeState<3>(), law, false);
+    std::cout << "  extruded facet vs 2D end segment: t_N " << r3.normal_force << " / " << r2.normal_force
+              << ", slave force (" << r3.residual[0] << ", " << r3.residual[1] << ", " << r3.residual[2]
+              << ") / (" << r2.residual[0] << ", " << r2.residual[1] << ")" << std::endl;
+    check(r2.in_contact && r3.in_contact && r2.normal_force < law.penalty_normal * 0.01 &&
+            std::abs(r3.normal_force - r2.normal_force) < 1e-12 * r2.normal_force &&
+            std::abs(r3.residual[0] - r2.residual[0]) < 1e-12 * r2.normal_force &&
+            std::abs(r3.residual[1] - r2.residual[1]) < 1e-12 * r2.normal_force && std::abs(r3.residual[2]) < 1e-12,
+          "free edge: an extruded facet gives the 2D tapered end segment's force");
+    return worst;
+  }
 } // namespace
 
 int main()
@@ -899,6 +988,7 @@ int main()
       test_face_order<2>();
       test_face_order<3>();
       worst = std::max(worst, test_concave_corner());
+      worst = std::max(worst, test_free_edge());
       std::cout << "largest tangent error " << worst << std::endl;
     }
   catch (const std::exception &e)

@@ -380,8 +380,9 @@ namespace anvil
           {
             // Behind the face's line and beyond its end: a side
             // of a concave corner, if another face shares the vertex.
-            if (dim == 2 && r.gap < 0 &&
-                !(pair.self && -r.gap > 1.5 * penetration_limit))
+            // 3D: behind the facet's surface and outside it, maybe beyond a
+            // free edge (free_edge_face).
+            if (r.gap < 0 && !(pair.self && -r.gap > 1.5 * penetration_limit))
               beyond_end.emplace_back(f, r.xi[0] < 0 ? 0u : 1u);
             continue;
           }
@@ -409,9 +410,11 @@ namespace anvil
     contact::ContactResult<dim> &result) const
   {
     // Beyond a free end of the master surface: its end segment extended,
-    // tapered (free_end_contact; 2D only, 3D facet edges are sharp).
+    // tapered (free_end_contact; 3D: free_edge_face).
     int found = -1;
-    if constexpr (dim == 2)
+    if constexpr (dim == 3)
+      found = free_edge_face(p, pass, n, beyond_end, x, state, law, with_matrix, best_face, result);
+    else
       for (const auto &[f, end] : beyond_end)
         {
           const unsigned int v    = faces[f].nodes[end];
@@ -478,7 +481,9 @@ namespace anvil
                     bool extended = false; // best_face is an end segment extended (free_end_contact)
                     if (best_face < 0)
                       {
-                        const auto corner = concave_corner(beyond_end);
+                        // Concave corners are detected in 2D only (doc/contact.md).
+                        const auto corner = dim == 2 ? concave_corner(beyond_end)
+                                                     : std::pair<int, unsigned int>(-1, 0);
                         if (corner.first < 0)
                           {
                             const int f = free_end_face(p, pass, n, beyond_end, x, state, law,

@@ -123,6 +123,7 @@ namespace anvil
             {"thermal_work", e.thermal_work},
             {"hypoelastic_volume_work", e.hypoelastic_volume_work},
             {"f_bar_work", e.f_bar_work},
+            {"algorithmic_dissipation", e.algorithmic_dissipation},
             {"previous_time_step", previous_time_step}};
   }
 
@@ -143,6 +144,7 @@ namespace anvil
     e.thermal_work            = named_value(v, "thermal_work");
     e.hypoelastic_volume_work = named_value(v, "hypoelastic_volume_work");
     e.f_bar_work              = named_value(v, "f_bar_work");
+    e.algorithmic_dissipation = named_value(v, "algorithmic_dissipation");
     previous_time_step = named_value(v, "previous_time_step");
   }
 

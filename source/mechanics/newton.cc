@@ -155,8 +155,10 @@ namespace anvil
         TrilinosWrappers::MPI::Vector step_u(owned_solution);
         step_u -= owned_old_solution;
         const double du_scale = step_u.l2_norm();
-        const bool residual_ok =
-          r <= parameters.absolute_residual_tolerance || r <= parameters.residual_tolerance * scale;
+        // Below the round-off floor of u's digits no tolerance can be met (residual_floor.cc).
+        const bool residual_ok = r <= parameters.absolute_residual_tolerance ||
+                                 r <= parameters.residual_tolerance * scale ||
+                                 r <= residual_floor();
         // The correction that would come next is about the last one times the
         // residual's contraction (quadratic convergence makes this sharp):
         // test that instead of paying one more solve to see it.

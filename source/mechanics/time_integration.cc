@@ -131,10 +131,12 @@ namespace anvil
   {
     // Work balance: the nodes' side (loads, supports, contact forces) against
     // the points' side (stress work) and the kinetic energy (eq. in doc/energy_audit.md).
-    const double residual = external_work + initial_kinetic - kinetic - stress_work - contact_work;
-    const double scale    = std::max({std::abs(external_work), std::abs(stress_work),
-                                      std::abs(contact_work), std::abs(kinetic),
-                                      std::abs(initial_kinetic), 1e-300});
+    const double residual =
+      external_work + initial_kinetic - kinetic - stress_work - contact_work - algorithmic_dissipation;
+    const double scale = std::max({std::abs(external_work), std::abs(stress_work),
+                                   std::abs(contact_work), std::abs(kinetic),
+                                   std::abs(initial_kinetic), std::abs(algorithmic_dissipation),
+                                   1e-300});
     return std::abs(residual) / scale;
   }
 
@@ -175,6 +177,7 @@ namespace anvil
           }
         a.compress(VectorOperation::insert);
         v.compress(VectorOperation::insert);
+        energy_audit.algorithmic_dissipation += step_algorithmic_dissipation(du, a, v);
         acceleration_old         = a;
         velocity_old             = v;
         acceleration_old_ghosted = a;

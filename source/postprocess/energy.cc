@@ -6,7 +6,8 @@ namespace anvil
    * energy.csv and the energy and heat-balance sections of summary.json:
    * the mechanical audit's two balances (doc/energy_audit.md): the work of
    * loads, supports and contact against kinetic energy and stress work
-   * (balance_error), and the stress work against elastic energy, plastic,
+   * (balance_error; in dynamics with generalized-α's algorithmic dissipation,
+   * its own column), and the stress work against elastic energy, plastic,
    * thermal, hypoelastic-volume and F-bar work (stress_balance_error); and, for a heat equation
    * integrated in time (a steady one: steady_heat.cc), the heat audit (content, its change,
    * heat through boundaries, sources, plastic, thermoelastic and contact
@@ -28,6 +29,9 @@ namespace anvil
                         "balance_error [-]", "contact_work [N mm]", "flow_plastic_work [N mm]",
                         "thermal_work [N mm]", "hypoelastic_volume_work [N mm]",
                         "f_bar_work [N mm]", "stress_balance_error [-]"});
+      // Only a dynamic scene has a scheme that dissipates (generalized-α, ρ∞ < 1).
+      if (s.physics.mechanics() && s.physics.mechanics()->is_dynamic())
+        columns.emplace_back("algorithmic_dissipation [N mm]");
       if (s.physics.transient_heat())
         columns.insert(columns.end(),
                        {"heat_content [mJ]", "heat_content_change [mJ]", "boundary_heat_in [mJ]",
@@ -47,6 +51,8 @@ namespace anvil
                                  e.contact_work, e.flow_plastic_work, e.thermal_work,
                                  e.hypoelastic_volume_work,
                                  e.f_bar_work, e.stress_balance_error()});
+          if (m->is_dynamic())
+            row.push_back(e.algorithmic_dissipation);
         }
       if (s.physics.transient_heat())
         {
@@ -76,6 +82,8 @@ namespace anvil
           summary.set("energy", "hypoelastic_volume_work", e.hypoelastic_volume_work);
           summary.set("energy", "f_bar_work", e.f_bar_work);
           summary.set("energy", "stress_balance_error", e.stress_balance_error());
+          if (m->is_dynamic())
+            summary.set("energy", "algorithmic_dissipation", e.algorithmic_dissipation);
         }
       if (s.physics.transient_heat())
         {

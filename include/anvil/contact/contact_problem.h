@@ -79,7 +79,7 @@ namespace anvil
       bool                                    self     = false;
       bool                                    per_area = false;
       /// 2D: the taper beyond a free end of the master surface, in lengths of
-      /// its end segment (free_end.h); 0: a sharp end, as 3D facet edges are.
+      /// its end segment, in 3D beyond a free facet edge (free_end.h); 0: sharp.
       double                                  end_taper = 0.05;
       contact::FrictionLaw                    law;
       // Thermal contact (eq. 30–34).
@@ -250,19 +250,28 @@ namespace anvil
     concave_corner(const std::vector<std::pair<unsigned int, unsigned int>> &beyond_end) const;
     /// The closest master face of pair @p p (among @p candidates) that slave node
     /// @p n projects into (its element, no tangent, in @p result), or -1; the
-    /// (face, end) pairs the node lies behind and beyond in @p beyond_end (2D).
+    /// (face, end) pairs the node lies behind and beyond in @p beyond_end (3D:
+    /// the facets it lies behind and outside of, end 0).
     int closest_face(unsigned int p, unsigned int n, const std::vector<unsigned int> &candidates,
                      const std::vector<dealii::Point<dim>> &x, const contact::NodeState<dim> &state,
                      const contact::FrictionLaw &law, contact::ContactResult<dim> &result,
                      std::vector<std::pair<unsigned int, unsigned int>> &beyond_end) const;
-    /// 2D: among @p beyond_end, an end segment at a free end of the master
+    /// Among @p beyond_end, an end segment at a free end of the master
     /// surface that carries node @p n (free_end_contact, closer than
-    /// @p best_face's @p result, which it then replaces), or -1.
+    /// @p best_face's @p result, which it then replaces), or -1; 3D: free_edge_face.
     int free_end_face(unsigned int p, unsigned int pass, unsigned int n,
                       const std::vector<std::pair<unsigned int, unsigned int>> &beyond_end,
                       const std::vector<dealii::Point<dim>> &x, const contact::NodeState<dim> &state,
                       const contact::FrictionLaw &law, bool with_matrix, int best_face,
                       contact::ContactResult<dim> &result) const;
+    /// 3D: the same for a free facet edge (free_edge_contact; free_edge_face.cc):
+    /// among @p beyond_end's facets, one whose edge the node is beyond borders
+    /// no other facet of the master surface.
+    int free_edge_face(unsigned int p, unsigned int pass, unsigned int n,
+                       const std::vector<std::pair<unsigned int, unsigned int>> &beyond_end,
+                       const std::vector<dealii::Point<dim>> &x, const contact::NodeState<dim> &state,
+                       const contact::FrictionLaw &law, bool with_matrix, int best_face,
+                       contact::ContactResult<dim> &result) const;
     /// Face @p f's nodes at @p x and at t_n.
     void face_positions(unsigned int f, const std::vector<dealii::Point<dim>> &x,
                         std::vector<dealii::Point<dim>> &xm,

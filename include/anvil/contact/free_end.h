@@ -7,7 +7,8 @@ namespace anvil
   namespace contact
   {
     /// The default of Contact/<pair>/Free end taper: how far beyond a free end
-    /// of a 2D master surface (in lengths of its end segment, past the
+    /// of a 2D master surface (in lengths of its end segment; in 3D beyond a free
+    /// facet edge, in the facet's parameter across it, past the
     /// parameter tolerance of contact_element.cc) a slave still feels the end
     /// segment, its force tapered smoothly to zero there.
     constexpr double default_end_taper = 0.05;
@@ -33,5 +34,25 @@ namespace anvil
                                       unsigned int end, const NodeState<2> &state,
                                       const FrictionLaw &law, bool with_matrix,
                                       double end_taper = default_end_taper);
+
+    /**
+     * The same in 3D: a slave behind the surface of a bilinear master facet
+     * and just beyond its edge @p edge (2k + e: the edge ξ_k = e, deal.II's
+     * numbering of a quadrilateral's lines), an edge no other facet of the
+     * master surface shares, with the other coordinate within the facet: the
+     * facet extended across the edge, its force times w(d), d the distance
+     * beyond the edge in facet parameters. The tangent includes w's
+     * derivative through the closest point (implicit function theorem).
+     * Residual and tangent as node_to_segment's [slave, master nodes 0..3];
+     * xi is the point projected onto the edge (in [0, 1]², the heat's
+     * weights). Not in contact beyond the taper or beyond two edges at once
+     * (a free corner is not tapered).
+     */
+    ContactResult<3> free_edge_contact(const dealii::Point<3> &xs, const dealii::Point<3> &xs_old,
+                                       const std::vector<dealii::Point<3>> &xm,
+                                       const std::vector<dealii::Point<3>> &xm_old,
+                                       unsigned int edge, const NodeState<3> &state,
+                                       const FrictionLaw &law, bool with_matrix,
+                                       double end_taper = default_end_taper);
   } // namespace contact
 } // namespace anvil

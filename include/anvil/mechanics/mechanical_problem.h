@@ -158,7 +158,7 @@ namespace anvil
     /**
      * The energy audit, accumulated over accepted steps (N·mm), as two
      * balances whose sides are computed by different routes (doc/energy_audit.md):
-     *   work:   W_ext + K₀ = K + W_σ + W_contact                 (nodes vs points)
+     *   work:   W_ext + K₀ = K + W_σ + W_contact + D_alg         (nodes vs points)
      *   stress: W_σ = ΔE_el + W_p,flow + W_th − V_hypo + W_F̄     (points, per term)
      */
     struct Energy
@@ -176,7 +176,8 @@ namespace anvil
       double thermal_work   = 0; // ∫ [σ̄ : βΔT I − (W(σ_n, T_n+1) − W(σ_n, T_n))] dv½
       double hypoelastic_volume_work = 0; // ∫ ½(W_n + W_n+1)(J_n+1 − J_n) dV: what ∫W dv gains by volume change alone
       double f_bar_work     = 0; // ∫ σ̄ : (Δε − Δε̄) dv½: F-bar's stress power beyond the material's
-      /// |W_ext + K₀ − K − W_σ − W_contact| relative to the largest term.
+      double algorithmic_dissipation = 0; // Σ eq. A3: what generalized-α removes (zero for ρ∞ = 1)
+      /// |W_ext + K₀ − K − W_σ − W_contact − D_alg| relative to the largest term.
       double balance_error() const;
       /// |W_σ − (E_el − E_el,0) − W_p,flow − W_th + V_hypo − W_F̄| relative to the largest term.
       double stress_balance_error() const;
@@ -316,6 +317,10 @@ namespace anvil
                        double time_new, bool &assembled);
     unsigned int solve_linear_system(dealii::TrilinosWrappers::MPI::Vector &du);
     double       residual_norm() const;
+    /// The smallest residual the digits of u and of F = I + ∇u can resolve,
+    /// 2 ε |diag K ∘ (|u| + h)| over the free dofs (residual_floor.cc);
+    /// Newton accepts a residual below it.
+    double       residual_floor() const;
     /// 3x3 F from the in-plane gradient (and the hoop stretch if axisymmetric).
     dealii::Tensor<2, 3> deformation_gradient(const dealii::Tensor<2, dim> &grad_u,
                                               double                        radial_displacement,
@@ -325,6 +330,14 @@ namespace anvil
     void setup_dynamics();
     /// Row sums of the mass matrix (lumped mass), t = ρ ∫ N dV.
     void lumped_mass(dealii::TrilinosWrappers::MPI::Vector &m) const;
+    /// M x with the scene's mass (consistent or lumped); x ghosted.
+    void mass_product(const dealii::TrilinosWrappers::MPI::Vector &x,
+                      dealii::TrilinosWrappers::MPI::Vector       &mx) const;
+    /// The step's algorithmic dissipation of generalized-α (eq. A3 of
+    /// doc/energy_audit.md), before the old state is overwritten.
+    double step_algorithmic_dissipation(const dealii::TrilinosWrappers::MPI::Vector &du,
+                                        const dealii::TrilinosWrappers::MPI::Vector &a_new,
+                                        const dealii::TrilinosWrappers::MPI::Vector &v_new) const;
     /// ½ vᵀ M v with the scene's mass (consistent or lumped).
     double kinetic_energy(const dealii::TrilinosWrappers::MPI::Vector &v) const;
     /// ∫ ½ (p²/K(T) + s:s/2G(T)) dv over the committed stresses and temperatures.

@@ -1,0 +1,106 @@
+// The energy generalized-α removes in one step (doc/energy_audit.md, eq. A3):
+// the energy audit's algorithmic-dissipation term, from the step's
+// velocities, accelerations and static residuals by its own formula.
+#include <deal.II/fe/fe_values.h>
+
+#include <anvil/core/instantiate.h>
+#include <anvil/mechanics/mechanical_problem.h>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  template <int dim>
+  void MechanicalProblem<dim>::mass_product(const TrilinosWrappers::MPI::Vector &x,
+                                            TrilinosWrappers::MPI::Vector       &mx) const
+  {
+    // M x with the scene's mass (consistent, or its row sums if lumped), the
+    // same cell mass as the inertia kernel (inertia.cc) and kinetic_energy.
+    FEValues<dim> fe_values(mapping, fe, quadrature, update_values | update_JxW_values |
+                                                       update_quadrature_points);
+    const unsigned int                   n = fe.n_dofs_per_cell();
+    std::vector<types::global_dof_index> dofs(n);
+    Vector<double>                       local(n);
+    std::vector<double>                  xa(n);
+    mx = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          fe_values.reinit(cell);
+          cell->get_dof_indices(dofs);
+          for (unsigned int a = 0; a < n; ++a)
+            xa[a] = x(dofs[a]);
+          const double rho = materials.at(cell->material_id())->density();
+          local            = 0;
+          for (unsigned int q = 0; q < quadrature.size(); ++q)
+            {
+              const double w = rho * fe_values.JxW(q) *
+                               (axisymmetric ? 2 * numbers::PI * fe_values.quadrature_point(q)[0] : 1.);
+              for (unsigned int a = 0; a < n; ++a)
+                {
+                  const unsigned int c  = fe.system_to_component_index(a).first;
+                  const double       Na = fe_values.shape_value_component(a, q, c);
+                  if (parameters.lumped_mass)
+                    local(a) += Na * w * xa[a];
+                  else
+                    for (unsigned int b = 0; b < n; ++b)
+                      if (fe.system_to_component_index(b).first == c)
+                        local(a) += Na * fe_values.shape_value_component(b, q, c) * w * xa[b];
+                }
+            }
+          mx.add(dofs, local);
+        }
+    mx.compress(VectorOperation::add);
+  }
+
+  template <int dim>
+  double MechanicalProblem<dim>::step_algorithmic_dissipation(
+    const TrilinosWrappers::MPI::Vector &du, const TrilinosWrappers::MPI::Vector &a_new,
+    const TrilinosWrappers::MPI::Vector &v_new) const
+  {
+    // Eq. A3 (doc/energy_audit.md): with ⟨x⟩ = ½(xₙ + xₙ₊₁), [x] = xₙ₊₁ − xₙ,
+    // r = f_int (with contact) − f_ext, the step's Newmark update and the
+    // α-shifted balance of the free dofs (Chung & Hulbert 1993),
+    //   D = (½ − α_f) (Δt ⟨v⟩ᵀM[a] + [r]·Δu|free)
+    //     + (β − γ/2) Δt² (⟨a⟩ᵀM[a] + (½ − α_m)[a]ᵀM[a])
+    //     − (½ − α_m) (M[a])·Δu|supports,
+    // the last term because the supports' reactions carry M aₙ₊₁, not the
+    // balance's M ã. Zero for ρ∞ = 1 (α_m = α_f = ½, γ = ½, β = ¼).
+    const double dt = current_time_step;
+    TrilinosWrappers::MPI::Vector jump_a(a_new), mean_a(a_new), mean_v(v_new);
+    jump_a -= acceleration_old;
+    mean_a += acceleration_old;
+    mean_a *= 0.5;
+    mean_v += velocity_old;
+    mean_v *= 0.5;
+
+    TrilinosWrappers::MPI::Vector ghosted(locally_owned_dofs, locally_relevant_dofs,
+                                          mpi_communicator);
+    ghosted = jump_a;
+    TrilinosWrappers::MPI::Vector m_jump_a(locally_owned_dofs, mpi_communicator);
+    mass_product(ghosted, m_jump_a);
+
+    // [r]·Δu on the free dofs (hanging nodes included: their residual is
+    // condensed onto the masters, which Δu of both carries), M[a]·Δu on the supports.
+    double residual_work = 0, support_work = 0;
+    for (const auto i : locally_owned_dofs)
+      {
+        const auto *masters = constraints.get_constraint_entries(i);
+        if (masters && masters->empty())
+          support_work += m_jump_a(i) * du(i);
+        else
+          residual_work +=
+            (internal_force(i) - external_force(i) - static_residual_old(i)) * du(i);
+      }
+    residual_work = Utilities::MPI::sum(residual_work, mpi_communicator);
+    support_work  = Utilities::MPI::sum(support_work, mpi_communicator);
+
+    const double beta = newmark_beta, gamma = newmark_gamma;
+    return (0.5 - alpha_f) * (dt * (mean_v * m_jump_a) + residual_work) +
+           (beta - 0.5 * gamma) * dt * dt *
+             ((mean_a * m_jump_a) + (0.5 - alpha_m) * (jump_a * m_jump_a)) -
+           (0.5 - alpha_m) * support_work;
+  }
+
+  ANVIL_INSTANTIATE_CLASS(MechanicalProblem)
+} // namespace anvil

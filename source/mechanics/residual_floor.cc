@@ -1,0 +1,45 @@
+// The round-off floor of the mechanical residual (doc/mechanics.md, "Newton,
+// line search, predictor, cut-back"): the smallest |R| Newton can reach.
+#include <anvil/core/instantiate.h>
+#include <anvil/mechanics/mechanical_problem.h>
+
+#include <cmath>
+#include <limits>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  template <int dim>
+  double MechanicalProblem<dim>::residual_floor() const
+  {
+    // The displacement of a dof is known to ε|u_i|, and the strain to ε
+    // absolute (F = I + ∇u), i.e. the displacement to ε h on cells of size h
+    // as well: the residual is only known to |K δu| with |δu_i| ≤ ε(|u_i| + h).
+    // The stiffness's rows sum to about zero (a translation is free of
+    // force), so Σ_j |K_ij| ≈ 2 K_ii. Newton's corrections stall there and
+    // |R| wanders at that level whatever the step: two_blocks after its
+    // unloading (|u| = 3.75 mm, |R| 2.5–3e-10 N against a force scale of
+    // 0.17 N) or a small vibration (strain 1e-8: 1.5e-11 N against 1e-3 N).
+    // Constrained rows carry no residual; h is the largest cell's diameter.
+    double h = 0;
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        h = std::max(h, cell->diameter());
+    h = Utilities::MPI::max(h, mpi_communicator);
+    double sum = 0;
+    for (const auto i : locally_owned_dofs)
+      if (!active_constraints->is_constrained(i))
+        {
+          const double k =
+            2 * std::abs(system_matrix.diag_element(i)) * (std::abs(owned_solution(i)) + h);
+          sum += k * k;
+        }
+    return std::numeric_limits<double>::epsilon() *
+           std::sqrt(Utilities::MPI::sum(sum, mpi_communicator));
+  }
+
+#define INSTANTIATE(dim) template double MechanicalProblem<dim>::residual_floor() const;
+  ANVIL_INSTANTIATE(INSTANTIATE)
+#undef INSTANTIATE
+} // namespace anvil
