@@ -18,7 +18,10 @@ Cases:
   strip contact: contrib/bench/contact_strip.prm, n cells along the upper strip
 
 Usage: solver_scaling.py BUILD_DIR OUT_DIR [--small] [--large] [--cases 2d,3d,strip]
-       [--solvers iterative,direct] [--sizes '2d:64,128;3d:10'] [--np 2]
+       [--solvers iterative,direct] [--sizes '2d:64,128;3d:10'] [--np 2] [--set ENTRY=VALUE ...]
+
+--set passes an entry to every run (e.g. 'Mechanics/Linear solver/AMG rebuild
+growth=0' for the hierarchy built at every solve, as before session 8).
 """
 import json
 import math
@@ -49,11 +52,11 @@ def case_sets(case, n):
         "Mechanics/Linear solver/Tolerance=1e-8"]
 
 
-def run(build, out, case, n, solver, np):
+def run(build, out, case, n, solver, np, extra=()):
     scene, sets = case_sets(case, n)
     name = "%s_%d_%s_np%d" % (case, n, solver, np)
     directory = os.path.join(out, name)
-    sets = sets + ["Mechanics/Linear solver/Type=" + solver, "Output/Directory=" + directory]
+    sets = sets + list(extra) + ["Mechanics/Linear solver/Type=" + solver, "Output/Directory=" + directory]
     cmd = ["/usr/bin/time", "-f", "%U", "-o", directory + ".time"]
     if np > 1:
         cmd += ["mpirun", "--oversubscribe", "-np", str(np)]
@@ -102,6 +105,7 @@ def main():
     cases = ["2d", "3d", "strip"]
     solvers = ["iterative", "direct"]
     np = 1
+    extra = [args[i + 1] for i, a in enumerate(args) if a == "--set"]
     for i, a in enumerate(args):
         if a == "--cases":
             cases = args[i + 1].split(",")
@@ -127,9 +131,13 @@ def main():
             for solver in solvers:
                 if solver == "direct" and n > DIRECT_LIMIT[case]:
                     continue
-                r = run(build, out, case, n, solver, np)
+                r = run(build, out, case, n, solver, np, extra)
                 if r:
                     results.append(r)
+    # Appended (one run may add sizes to another's): the input of scaling_figure.py.
+    store = os.path.join(out, "results.json")
+    kept = json.load(open(store)) if os.path.exists(store) else []
+    json.dump(kept + results, open(store, "w"), indent=1)
     print("columns: Krylov/sv GMRES iterations per linear solve (direct: 1); asm, solve s/it: wall seconds per")
     print("         Newton iteration of 'Mechanics: assembly' and 'Mechanics: linear solve'; s/Newton their sum;")
     print("         user s: CPU seconds of the whole process; B/DoF: peak memory per DoF")

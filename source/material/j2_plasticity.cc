@@ -586,4 +586,9 @@ namespace anvil
   {
     return std::make_unique<J2Point>(*this);
   }
+
+  std::vector<std::shared_ptr<MaterialPoint>> J2Model::create_points(const std::size_t n) const
+  {
+    return contiguous_points<J2Point>(n, *this);
+  }
 } // namespace anvil

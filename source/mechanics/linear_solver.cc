@@ -6,6 +6,8 @@
 #include <deal.II/lac/trilinos_precondition.h>
 
 #include <anvil/core/instantiate.h>
+#include <algorithm>
+#include <cmath>
 #include <anvil/mechanics/linear_solver.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
@@ -18,11 +20,10 @@ namespace anvil
 {
   using namespace dealii;
 
-  unsigned int solve_gmres_amg(const TrilinosWrappers::SparseMatrix   &K,
-                               TrilinosWrappers::MPI::Vector          &x,
-                               const TrilinosWrappers::MPI::Vector    &b,
-                               const std::vector<std::vector<double>> &near_null_space,
-                               const IterativeSolverSettings          &settings)
+  std::unique_ptr<TrilinosWrappers::PreconditionAMG>
+  build_amg(const TrilinosWrappers::SparseMatrix   &K,
+            const std::vector<std::vector<double>> &near_null_space,
+            const IterativeSolverSettings          &settings)
   {
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     data.elliptic              = true; // smoothed aggregation, Chebyshev smoother
@@ -53,9 +54,17 @@ namespace anvil
     // Aggregate nodes, not dofs: a node's components move together in
     // every mode, and splitting them would cut the modes apart.
     list.set("PDE equations", static_cast<int>(settings.components));
-    TrilinosWrappers::PreconditionAMG amg;
-    amg.initialize(K, list);
+    auto amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+    amg->initialize(K, list);
+    return amg;
+  }
 
+  unsigned int solve_gmres(const TrilinosWrappers::SparseMatrix    &K,
+                           TrilinosWrappers::MPI::Vector           &x,
+                           const TrilinosWrappers::MPI::Vector     &b,
+                           const TrilinosWrappers::PreconditionAMG &amg,
+                           const IterativeSolverSettings           &settings)
+  {
     SolverControl control(settings.max_iterations, settings.tolerance * b.l2_norm());
     // Right preconditioning: the test is on the true residual |b − K x|
     // (left preconditioning would test |P⁻¹(b − K x)|, in mm, against a
@@ -64,6 +73,44 @@ namespace anvil
       control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(30, true));
     gmres.solve(K, x, b, amg);
     return control.last_step();
+  }
+
+  unsigned int ReusedAMG::solve(const TrilinosWrappers::SparseMatrix      &K,
+                                TrilinosWrappers::MPI::Vector             &x,
+                                const TrilinosWrappers::MPI::Vector       &b,
+                                const std::function<RigidBodyModes()>     &modes,
+                                const IterativeSolverSettings             &settings)
+  {
+    unsigned int stale = 0;
+    if (amg && matrix == &K && settings.rebuild_growth > 0)
+      {
+        // The kept hierarchy gets rebuild_growth times the iterations its
+        // first solve needed; if that is not enough, a fresh hierarchy
+        // continues from the iterate reached (nothing is thrown away but
+        // the set-up avoided).
+        IterativeSolverSettings capped = settings;
+        capped.max_iterations =
+          std::min<unsigned int>(settings.max_iterations,
+                                 std::ceil(settings.rebuild_growth * first_iterations));
+        try
+          {
+            return solve_gmres(K, x, b, *amg, capped);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            stale = e.last_step;
+          }
+      }
+    amg.reset(); // free the old hierarchy before building the new one
+    const RigidBodyModes    m     = modes();
+    IterativeSolverSettings built = settings;
+    if (!m.node_blocks)
+      built.components = 1;
+    amg              = build_amg(K, m.modes, built);
+    matrix           = &K;
+    ++n_builds;
+    first_iterations = std::max(1u, solve_gmres(K, x, b, *amg, settings));
+    return stale + first_iterations;
   }
 
   template <int dim>
@@ -83,13 +130,14 @@ namespace anvil
       }
     // The modes of the current configuration x = X + u (near-null for the
     // tangent at u; exact for the unloaded body).
-    const RigidBodyModes    modes = rigid_body_modes(mapping, dof_handler, &solution);
     IterativeSolverSettings settings;
     settings.tolerance      = parameters.linear_tolerance;
     settings.max_iterations = parameters.linear_max_iterations;
     settings.higher_order   = parameters.polynomial_degree > 1;
-    settings.components     = modes.node_blocks ? dim : 1;
-    return solve_gmres_amg(system_matrix, du, system_rhs, modes.modes, settings);
+    settings.rebuild_growth = parameters.amg_rebuild_growth;
+    settings.components     = dim; // when the nodes' rows are consecutive
+    const auto modes        = [&]() { return rigid_body_modes(mapping, dof_handler, &solution); };
+    return amg.solve(system_matrix, du, system_rhs, modes, settings);
   }
 
 #define INSTANTIATE(dim)                                                                      \

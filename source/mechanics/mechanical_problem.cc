@@ -193,6 +193,7 @@ namespace anvil
   void MechanicalProblem<dim>::setup_matrix()
   {
     direct_solver.clear(); // a new pattern: analyse it again
+    amg.clear();           // it references the matrix about to be re-created
     // Contact couples dofs of different cells (a slave node with the nodes of
     // the master face below it), possibly owned by other processes: their
     // rows enter the pattern here and go to their owners.
@@ -226,15 +227,27 @@ namespace anvil
     thermoelastic_sources.reinit(triangulation, n_q, 0.);
     material_temperature.reinit(triangulation, n_q, parameters.temperature);
     material_temperature_old = material_temperature;
+    // One block of points per body (MaterialModel::create_points), handed
+    // out in cell order.
+    std::map<types::material_id, std::size_t> count;
     for (const auto &cell : triangulation.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          const auto m = materials.find(cell->material_id());
-          if (m == materials.end())
+          if (materials.find(cell->material_id()) == materials.end())
             throw InputError("internal: no material for body id " +
                              std::to_string(cell->material_id()));
+          count[cell->material_id()] += n_q;
+        }
+    std::map<types::material_id, std::vector<std::shared_ptr<MaterialPoint>>> made;
+    for (const auto &[id, n] : count)
+      made[id] = materials.find(id)->second->create_points(n);
+    std::map<types::material_id, std::size_t> next;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          std::size_t &k = next[cell->material_id()];
           for (unsigned int q = 0; q < n_q; ++q)
-            points(cell, q) = m->second->create_point();
+            points(cell, q) = std::move(made[cell->material_id()][k++]);
         }
   }
 

@@ -89,6 +89,11 @@ namespace anvil
                       "Relative tolerance of the iterative solver (dimensionless).");
     prm.declare_entry("Maximum iterations", "1000", Patterns::Integer(1),
                       "Iterations of the iterative solver before the step is cut back.");
+    prm.declare_entry("AMG rebuild growth", "0", Patterns::Double(0),
+                      "0: build the AMG hierarchy for every solve. g > 0: keep it across Newton "
+                      "iterations and steps, giving the kept one g times the Krylov iterations of "
+                      "its first solve before a fresh one continues (pays on elastic and contact "
+                      "scenes, not on spreading plasticity: doc/linear_solver.md).");
     prm.declare_entry("Direct solver limit", "measured", Patterns::Anything(),
                       "Number of DoFs up to which 'automatic' chooses the direct solver; measured: "
                       "where KLU and GMRES + AMG cost the same per Newton iteration on the plastic "
@@ -168,6 +173,7 @@ namespace anvil
     linear_solver         = prm.get("Type");
     linear_tolerance      = prm.get_double("Tolerance");
     linear_max_iterations = prm.get_integer("Maximum iterations");
+    amg_rebuild_growth    = prm.get_double("AMG rebuild growth");
     const std::string limit = prm.get("Direct solver limit");
     if (limit == "measured")
       direct_solver_limit = measured_direct_solver_limit(dim);

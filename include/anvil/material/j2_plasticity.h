@@ -118,6 +118,7 @@ namespace anvil
                           const std::string        &path) override;
 
     std::unique_ptr<MaterialPoint> create_point() const override;
+    std::vector<std::shared_ptr<MaterialPoint>> create_points(std::size_t n) const override;
     /// The hardening law's strength_limit(), then σᵥ(ε̄, T) > 0 (material/strength.cc).
     StrengthLoss strength_lost(double T, double eps) const override;
     double      bulk_modulus() const override { return elastic.bulk_modulus(); }

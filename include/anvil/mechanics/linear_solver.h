@@ -6,9 +6,12 @@
 
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/mapping.h>
+#include <deal.II/lac/trilinos_precondition.h>
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <functional>
+#include <memory>
 #include <vector>
 
 namespace anvil
@@ -64,16 +67,57 @@ namespace anvil
     unsigned int max_iterations = 1000;
     bool         higher_order   = false; // Q2
     unsigned int components     = 1;     // dofs per node, contiguous ("PDE equations")
+    /// ReusedAMG: iterations allowed to a kept hierarchy, in units of its
+    /// first solve's (0: a new hierarchy for every solve).
+    double       rebuild_growth = 0;
+  };
+
+  /// The smoothed-aggregation hierarchy of K on @p near_null_space
+  /// (vectors over the locally owned rows of K).
+  std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG>
+  build_amg(const dealii::TrilinosWrappers::SparseMatrix &K,
+            const std::vector<std::vector<double>>       &near_null_space,
+            const IterativeSolverSettings                &settings);
+
+  /**
+   * GMRES + AMG whose hierarchy may outlive a solve. Building it
+   * (aggregation, prolongator smoothing, Galerkin products) costs several
+   * V-cycles; where the tangent changes little between Newton iterations
+   * and steps (elastic bodies, contact) an older hierarchy is as good and
+   * the set-up is saved (the fine-level smoother and the residual use the
+   * current K, which the kept hierarchy references). With rebuild_growth
+   * g > 0 the kept hierarchy gets g times the iterations of its first solve;
+   * if GMRES has not converged by then, a fresh hierarchy continues from the
+   * iterate reached. g = 0 builds one for every solve (the default:
+   * spreading plasticity changes the tangent too much, doc/linear_solver.md).
+   */
+  class ReusedAMG
+  {
+  public:
+    /// x = K⁻¹ b; @p modes is called only when a hierarchy is built.
+    unsigned int solve(const dealii::TrilinosWrappers::SparseMatrix                 &K,
+                       dealii::TrilinosWrappers::MPI::Vector                        &x,
+                       const dealii::TrilinosWrappers::MPI::Vector                  &b,
+                       const std::function<RigidBodyModes()>                       &modes,
+                       const IterativeSolverSettings                                &settings);
+    /// Forget the hierarchy (K was re-created: a new pattern).
+    void clear() { amg.reset(); }
+    /// Hierarchies built so far (benchmarks).
+    unsigned int builds() const { return n_builds; }
+
+  private:
+    std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
+    const dealii::TrilinosWrappers::SparseMatrix              *matrix = nullptr;
+    unsigned int first_iterations = 0, n_builds = 0;
   };
 
   /**
-   * x = K⁻¹ b by GMRES(30) and one AMG V-cycle per iteration, the hierarchy
-   * built on @p near_null_space (vectors over the locally owned rows of K).
-   * Returns the iterations; throws SolverControl::NoConvergence.
+   * x = K⁻¹ b by GMRES(30), right-preconditioned by one V-cycle of @p amg
+   * per iteration. Returns the iterations; throws SolverControl::NoConvergence.
    */
-  unsigned int solve_gmres_amg(const dealii::TrilinosWrappers::SparseMatrix     &K,
-                               dealii::TrilinosWrappers::MPI::Vector            &x,
-                               const dealii::TrilinosWrappers::MPI::Vector      &b,
-                               const std::vector<std::vector<double>>           &near_null_space,
-                               const IterativeSolverSettings                    &settings);
+  unsigned int solve_gmres(const dealii::TrilinosWrappers::SparseMatrix      &K,
+                           dealii::TrilinosWrappers::MPI::Vector             &x,
+                           const dealii::TrilinosWrappers::MPI::Vector       &b,
+                           const dealii::TrilinosWrappers::PreconditionAMG   &amg,
+                           const IterativeSolverSettings                     &settings);
 } // namespace anvil

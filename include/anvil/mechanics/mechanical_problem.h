@@ -19,6 +19,7 @@
 #include <anvil/material/material_point.h>
 #include <anvil/material/objective_rates.h>
 #include <anvil/mechanics/boundary_conditions.h>
+#include <anvil/mechanics/linear_solver.h>
 
 #include <array>
 #include <functional>
@@ -88,6 +89,7 @@ namespace anvil
       std::string  linear_solver                = "automatic";
       double       linear_tolerance             = 1e-10;
       unsigned int linear_max_iterations        = 1000;
+      double       amg_rebuild_growth           = 1.5;
       unsigned int direct_solver_limit          = 200000;
 
       static void declare_parameters(dealii::ParameterHandler &prm);
@@ -371,6 +373,8 @@ namespace anvil
     /// KLU of system_matrix, its symbolic analysis kept while the pattern is
     /// (pivoting anew each time: the answers of a fresh solver).
     KluFactorization direct_solver{false};
+    /// GMRES + AMG, the hierarchy kept across Newton iterations and steps.
+    ReusedAMG amg;
     dealii::TrilinosWrappers::MPI::Vector  system_rhs;          // −R, constrained entries 0
     dealii::TrilinosWrappers::MPI::Vector  internal_force;      // f_int, all entries
     dealii::TrilinosWrappers::MPI::Vector  internal_force_old;
