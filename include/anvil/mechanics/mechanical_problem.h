@@ -89,7 +89,7 @@ namespace anvil
       std::string  linear_solver                = "automatic";
       double       linear_tolerance             = 1e-10;
       unsigned int linear_max_iterations        = 1000;
-      double       amg_rebuild_growth           = 1.5;
+      double       amg_rebuild_growth           = 0;
       unsigned int direct_solver_limit          = 200000;
 
       static void declare_parameters(dealii::ParameterHandler &prm);
