@@ -15,7 +15,8 @@ namespace anvil
                                             TrilinosWrappers::MPI::Vector       &mx) const
   {
     // M x with the scene's mass (consistent, or its row sums if lumped), the
-    // same cell mass as the inertia kernel (inertia.cc) and kinetic_energy.
+    // same cell mass as the inertia kernel (inertia.cc); kinetic_energy is
+    // ½ v·(M v) with it.
     FEValues<dim> fe_values(mapping, fe, quadrature, update_values | update_JxW_values |
                                                        update_quadrature_points);
     const unsigned int                   n = fe.n_dofs_per_cell();

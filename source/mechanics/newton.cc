@@ -155,10 +155,13 @@ namespace anvil
         TrilinosWrappers::MPI::Vector step_u(owned_solution);
         step_u -= owned_old_solution;
         const double du_scale = step_u.l2_norm();
-        // Below the round-off floor of u's digits no tolerance can be met (residual_floor.cc).
+        // Below the round-off floor of u's digits no tolerance can be met
+        // (residual_floor.cc). The floor is ε-relative: a residual above 1e-3
+        // of the force scale is never on it, and the floor (a pass over the
+        // matrix diagonal) is only worth computing in the last iterations.
         const bool residual_ok = r <= parameters.absolute_residual_tolerance ||
                                  r <= parameters.residual_tolerance * scale ||
-                                 r <= residual_floor();
+                                 (r <= 1e-3 * scale && r <= residual_floor());
         // The correction that would come next is about the last one times the
         // residual's contraction (quadratic convergence makes this sharp):
         // test that instead of paying one more solve to see it.

@@ -270,40 +270,12 @@ namespace anvil
   template <int dim>
   double MechanicalProblem<dim>::kinetic_energy(const TrilinosWrappers::MPI::Vector &v) const
   {
-    FEValues<dim> fe_values(mapping, fe, quadrature, update_values | update_JxW_values |
-                                                       update_quadrature_points);
-    std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
-    const unsigned int                   n = fe.n_dofs_per_cell();
-    std::vector<double>                  local(n), lumped(n);
-    double                               energy = 0;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          fe_values.reinit(cell);
-          cell->get_dof_indices(dofs);
-          for (unsigned int a = 0; a < n; ++a)
-            local[a] = v(dofs[a]);
-          const double rho = materials.at(cell->material_id())->density();
-          std::fill(lumped.begin(), lumped.end(), 0.);
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              const double w = fe_values.JxW(q) *
-                               (axisymmetric ? 2 * numbers::PI * fe_values.quadrature_point(q)[0] : 1.);
-              Tensor<1, dim> vq;
-              for (unsigned int a = 0; a < n; ++a)
-                {
-                  const unsigned int c  = fe.system_to_component_index(a).first;
-                  const double       Na = fe_values.shape_value_component(a, q, c);
-                  vq[c] += local[a] * Na;
-                  lumped[a] += rho * Na * w;
-                }
-              if (!parameters.lumped_mass)
-                energy += 0.5 * rho * (vq * vq) * w;
-            }
-          if (parameters.lumped_mass)
-            for (unsigned int a = 0; a < n; ++a)
-              energy += 0.5 * lumped[a] * local[a] * local[a];
-        }
+    // ½ vᵀ M v with the mass the audit's other terms use (mass_product).
+    TrilinosWrappers::MPI::Vector mv(locally_owned_dofs, mpi_communicator);
+    mass_product(v, mv);
+    double energy = 0;
+    for (const auto i : locally_owned_dofs)
+      energy += 0.5 * v(i) * mv(i);
     return Utilities::MPI::sum(energy, mpi_communicator);
   }
 
