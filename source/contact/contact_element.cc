@@ -396,6 +396,16 @@ namespace anvil
         if (tangent)
           {
             result.tangent.reinit(n, n);
+            // Most nodes a tool or a face is asked about are not touching it:
+            // the geometry in doubles decides that (its values are the AD
+            // values, operation for operation), and the derivatives are only
+            // taken for a pair in contact.
+            const PairGeometry<dim, double> g = geometry(coordinates);
+            if (!g.inside || g.gap > 0)
+              {
+                evaluate_pair(g, state, law, result);
+                return result;
+              }
             std::vector<ADNumber> x(n);
             for (unsigned int i = 0; i < n; ++i)
               x[i] = ADNumber(n, i, coordinates[i]);

@@ -16,38 +16,56 @@ namespace anvil
   {
     // M x with the scene's mass (consistent, or its row sums if lumped), the
     // same cell mass as the inertia kernel (inertia.cc); kinetic_energy is
-    // ½ v·(M v) with it.
-    FEValues<dim> fe_values(mapping, fe, quadrature, update_values | update_JxW_values |
-                                                       update_quadrature_points);
+    // ½ v·(M v) with it. The cell masses are integrated on the reference
+    // mesh, so they are computed once and kept (cell_masses).
     const unsigned int                   n = fe.n_dofs_per_cell();
     std::vector<types::global_dof_index> dofs(n);
     Vector<double>                       local(n);
     std::vector<double>                  xa(n);
-    mx = 0;
+    if (cell_masses.empty())
+      {
+        FEValues<dim> fe_values(mapping, fe, quadrature, update_values | update_JxW_values |
+                                                           update_quadrature_points);
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              fe_values.reinit(cell);
+              const std::size_t start = cell_masses.size();
+              cell_masses.resize(start + n * n, 0.);
+              double *const m   = &cell_masses[start];
+              const double  rho = materials.at(cell->material_id())->density();
+              for (unsigned int q = 0; q < quadrature.size(); ++q)
+                {
+                  const double w = rho * fe_values.JxW(q) *
+                                   (axisymmetric ? 2 * numbers::PI * fe_values.quadrature_point(q)[0] : 1.);
+                  for (unsigned int a = 0; a < n; ++a)
+                    {
+                      const unsigned int c  = fe.system_to_component_index(a).first;
+                      const double       Na = fe_values.shape_value_component(a, q, c);
+                      if (parameters.lumped_mass)
+                        m[a * n + a] += Na * w;
+                      else
+                        for (unsigned int b = 0; b < n; ++b)
+                          if (fe.system_to_component_index(b).first == c)
+                            m[a * n + b] += Na * fe_values.shape_value_component(b, q, c) * w;
+                    }
+                }
+            }
+      }
+    mx                 = 0;
+    const double *mass = cell_masses.data();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          fe_values.reinit(cell);
           cell->get_dof_indices(dofs);
-          for (unsigned int a = 0; a < n; ++a)
-            xa[a] = x(dofs[a]);
-          const double rho = materials.at(cell->material_id())->density();
-          local            = 0;
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
+          for (unsigned int b = 0; b < n; ++b)
+            xa[b] = x(dofs[b]);
+          for (unsigned int a = 0; a < n; ++a, mass += n)
             {
-              const double w = rho * fe_values.JxW(q) *
-                               (axisymmetric ? 2 * numbers::PI * fe_values.quadrature_point(q)[0] : 1.);
-              for (unsigned int a = 0; a < n; ++a)
-                {
-                  const unsigned int c  = fe.system_to_component_index(a).first;
-                  const double       Na = fe_values.shape_value_component(a, q, c);
-                  if (parameters.lumped_mass)
-                    local(a) += Na * w * xa[a];
-                  else
-                    for (unsigned int b = 0; b < n; ++b)
-                      if (fe.system_to_component_index(b).first == c)
-                        local(a) += Na * fe_values.shape_value_component(b, q, c) * w * xa[b];
-                }
+              double sum = 0;
+              for (unsigned int b = 0; b < n; ++b)
+                sum += mass[b] * xa[b];
+              local(a) = sum;
             }
           mx.add(dofs, local);
         }

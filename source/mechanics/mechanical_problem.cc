@@ -86,6 +86,8 @@ namespace anvil
         audit_omission = 1 + (it - terms.begin());
       }
     dof_handler.distribute_dofs(fe);
+    cell_masses.clear();
+    boundary_dofs.clear();
     {
       // The assembly's cells in the order of the loop (WorkStream's too).
       std::vector<typename Triangulation<dim>::cell_iterator> cells;
@@ -274,9 +276,13 @@ namespace anvil
   }
 
   template <int dim>
-  Tensor<1, dim> MechanicalProblem<dim>::reaction(const types::boundary_id boundary) const
+  const std::vector<std::pair<types::global_dof_index, unsigned int>> &
+  MechanicalProblem<dim>::owned_boundary_dofs(const types::boundary_id boundary) const
   {
-    Tensor<1, dim> force;
+    const auto known = boundary_dofs.find(boundary);
+    if (known != boundary_dofs.end())
+      return known->second;
+    auto          &list = boundary_dofs[boundary];
     const IndexSet dofs = DoFTools::extract_boundary_dofs(dof_handler, ComponentMask(), {boundary});
     // Component of each boundary dof from the dof's support on a cell.
     std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
@@ -294,10 +300,18 @@ namespace anvil
               if (seen[k])
                 continue;
               seen[k] = true;
-              force[fe.system_to_component_index(i).first] +=
-                internal_force(g) + inertia_force(g) - external_force(g);
+              list.emplace_back(g, fe.system_to_component_index(i).first);
             }
         }
+    return list;
+  }
+
+  template <int dim>
+  Tensor<1, dim> MechanicalProblem<dim>::reaction(const types::boundary_id boundary) const
+  {
+    Tensor<1, dim> force;
+    for (const auto &[g, component] : owned_boundary_dofs(boundary))
+      force[component] += internal_force(g) + inertia_force(g) - external_force(g);
     return Utilities::MPI::sum(force, mpi_communicator);
   }
 

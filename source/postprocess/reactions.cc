@@ -56,29 +56,12 @@ namespace anvil
     static Tensor<1, dim> mean_displacement(const MechanicalProblem<dim> &m,
                                             const types::boundary_id id, const MPI_Comm comm)
     {
-      const auto    &dofs   = m.get_dof_handler();
-      const auto    &fe     = dofs.get_fe();
-      const IndexSet owned  = dofs.locally_owned_dofs();
-      const IndexSet on_boundary = DoFTools::extract_boundary_dofs(dofs, ComponentMask(), {id});
       Tensor<1, dim> sum, count;
-      std::vector<types::global_dof_index> cell_dofs(fe.n_dofs_per_cell());
-      std::vector<bool>                    seen(owned.n_elements(), false);
-      for (const auto &cell : dofs.active_cell_iterators())
-        if (cell->is_locally_owned() || cell->is_ghost())
-          {
-            cell->get_dof_indices(cell_dofs);
-            for (unsigned int i = 0; i < cell_dofs.size(); ++i)
-              {
-                const auto g = cell_dofs[i];
-                if (!owned.is_element(g) || !on_boundary.is_element(g) ||
-                    seen[owned.index_within_set(g)])
-                  continue;
-                seen[owned.index_within_set(g)] = true;
-                const unsigned int c = fe.system_to_component_index(i).first;
-                sum[c] += m.displacement()(g);
-                count[c] += 1;
-              }
-          }
+      for (const auto &[g, c] : m.owned_boundary_dofs(id))
+        {
+          sum[c] += m.displacement()(g);
+          count[c] += 1;
+        }
       sum   = Utilities::MPI::sum(sum, comm);
       count = Utilities::MPI::sum(count, comm);
       Tensor<1, dim> mean;

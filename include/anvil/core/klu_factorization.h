@@ -4,10 +4,16 @@
 // pivot sequence: the ordering depends on the pattern only, so a matrix whose
 // values change (M + γK for a new γ, a new configuration) costs a numeric
 // refactorisation alone (klu_refactor, no pivot search; Amesos factors with
-// pivoting again when the condition estimate says the old pivots are poor).
-// On contrib/bench/heat_plate.prm the temperatures are those of
-// TrilinosWrappers::SolverDirect("Amesos_Klu") to the last printed digit;
-// the factorisations cost 25 % less.
+// pivoting again when the condition estimate min|u_ii| / max|u_ii| of the
+// refactored U falls below 1e-12). On contrib/bench/heat_plate.prm the
+// temperatures are those of TrilinosWrappers::SolverDirect("Amesos_Klu") to
+// the last printed digit; the factorisations cost 25 % less.
+//
+// Old pivots can be poor for new values without the condition estimate
+// noticing (growth in L). So after a solve with reused pivots the normwise
+// backward error |b − A x|∞ / (|A|∞ |x|∞ + |b|∞) is checked (one product
+// with A, a few per cent of a factorisation); above backward_error_limit the
+// matrix is factored with pivoting anew and the system solved again.
 
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -23,11 +29,9 @@ namespace anvil
   class KluFactorization
   {
   public:
-    /// @p reuse_pivots: refactorise with the first factorisation's pivot
-    /// sequence (klu_refactor; the heat problem's M + γK). false: pivot
-    /// anew every time, so the answer is a fresh KLU solve's bit for bit
-    /// (the mechanics, whose contact and plasticity change the matrix
-    /// more), and only the symbolic analysis is kept.
+    /// @p reuse_pivots: refactorise with the last pivoting factorisation's
+    /// pivot sequence (klu_refactor), checked as above. false: pivot anew
+    /// every time, and only the symbolic analysis is kept.
     explicit KluFactorization(bool reuse_pivots = true);
     ~KluFactorization();
 
@@ -40,13 +44,27 @@ namespace anvil
     void clear();
     bool empty() const { return !solver; }
 
+    /// A solve with reused pivots whose backward error exceeds this is
+    /// repeated after a factorisation with pivoting (round-off of a stable
+    /// LU: ~1e-16 n^½).
+    static constexpr double backward_error_limit = 1e-12;
+
     unsigned long symbolic_factorizations = 0, numeric_factorizations = 0;
+    /// Factorisations with pivoting made because a solve with reused pivots
+    /// failed the backward-error check.
+    unsigned long pivoting_retries = 0;
 
   private:
+    void numeric_factorization(bool reuse);
+
     std::unique_ptr<Epetra_LinearProblem> problem;
     std::unique_ptr<Amesos_BaseSolver>    solver;
     const Epetra_CrsMatrix               *matrix = nullptr; // the one analysed
     long long                             nonzeros = -1;
     bool                                  reuse_pivots;
+    /// The last numeric factorisation may have reused pivots (Amesos does
+    /// not say whether it fell back to pivoting).
+    bool                                  pivots_reused = false;
+    double                                matrix_norm   = 0; // |A|∞ of the last factorisation
   };
 } // namespace anvil

@@ -156,6 +156,11 @@ namespace anvil
 
     /// Reaction force on the named boundary (force the support exerts on the body), N.
     dealii::Tensor<1, dim> reaction(dealii::types::boundary_id boundary) const;
+    /// The locally owned dofs on a boundary with their components, each once,
+    /// in the order of the active cells (found once per mesh: the per-step
+    /// histories sum over them).
+    const std::vector<std::pair<dealii::types::global_dof_index, unsigned int>> &
+    owned_boundary_dofs(dealii::types::boundary_id boundary) const;
 
     /**
      * The energy audit, accumulated over accepted steps (N·mm), as two
@@ -370,9 +375,9 @@ namespace anvil
     const dealii::AffineConstraints<double> *active_constraints = &constraints;
 
     dealii::TrilinosWrappers::SparseMatrix system_matrix;
-    /// KLU of system_matrix, its symbolic analysis kept while the pattern is
-    /// (pivoting anew each time: the answers of a fresh solver).
-    KluFactorization direct_solver{false};
+    /// KLU of system_matrix, its symbolic analysis and pivots kept while the
+    /// pattern is (klu_refactor, checked: klu_factorization.h).
+    KluFactorization direct_solver{true};
     /// GMRES + AMG, the hierarchy kept across Newton iterations and steps.
     ReusedAMG amg;
     dealii::TrilinosWrappers::MPI::Vector  system_rhs;          // −R, constrained entries 0
@@ -425,5 +430,12 @@ namespace anvil
     unsigned int                                       checkpoint_handle = 0;
     std::vector<dealii::TrilinosWrappers::MPI::Vector *> checkpoint_targets();
     std::string material_failure; // this rank's, from the last assembly
+    /// Per locally owned cell (loop order), its n x n mass matrix (mass_product:
+    /// the mass does not change, the mesh being the reference one); empty
+    /// until first used.
+    mutable std::vector<double> cell_masses;
+    mutable std::map<dealii::types::boundary_id,
+                     std::vector<std::pair<dealii::types::global_dof_index, unsigned int>>>
+      boundary_dofs; // owned_boundary_dofs()
   };
 } // namespace anvil
