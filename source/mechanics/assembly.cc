@@ -75,6 +75,10 @@ namespace anvil
     const BodyForce<dim>           body_force(context);
     const FollowerPressure<dim>    follower_pressure(context);
     const Inertia<dim>             inertia(context);
+    // Shape functions, JxW and radii on the reference mesh: computed once per mesh.
+    const ReferenceValues<dim> *reference = assembly_mapping->reference_values(
+      fe, quadrature, formulation->component, axisymmetric);
+    const bool centre = formulation->f_bar;
 
     // One cell on any thread: its dof values, then the terms in a fixed
     // order (each term's sums run in the order of the serial loop).
@@ -82,7 +86,7 @@ namespace anvil
       copy.failed = false;
       copy.failure.clear();
       copy.max_plastic_increment = 0;
-      scratch.fe_values.reinit(cell);
+      scratch.reinit(cell, reference, formulation->component, centre, axisymmetric);
       cell->get_dof_indices(copy.dof_indices);
       for (unsigned int i = 0; i < copy.dof_indices.size(); ++i)
         {

@@ -45,32 +45,32 @@ namespace anvil
     }
 
     template <int dim>
-    Tensor<2, 3> Formulation<dim>::deformation_gradient(const FEValues<dim>       &v,
-                                                        const unsigned int         q,
+    Tensor<2, 3> Formulation<dim>::deformation_gradient(const double              *grad,
+                                                        const double              *value,
                                                         const std::vector<double> &values,
                                                         const double               R) const
     {
-      Tensor<2, dim> grad;
+      Tensor<2, dim> g;
       double         u_r = 0;
       for (unsigned int i = 0; i < n_dofs; ++i)
         {
-          const Tensor<1, dim> g = v.shape_grad_component(i, q, component[i]);
+          const unsigned int c = component[i];
           for (unsigned int d = 0; d < dim; ++d)
-            grad[component[i]][d] += values[i] * g[d];
-          if (axisymmetric && component[i] == 0)
-            u_r += values[i] * v.shape_value_component(i, q, 0);
+            g[c][d] += values[i] * grad[i * dim + d];
+          if (axisymmetric && c == 0)
+            u_r += values[i] * value[i];
         }
-      return deformation_gradient(grad, u_r, R);
+      return deformation_gradient(g, u_r, R);
     }
 
     template <int dim>
-    void Formulation<dim>::shape_gradient(const FEValues<dim> &v, const unsigned int a,
+    void Formulation<dim>::shape_gradient(const ReferenceCell &cell, const unsigned int a,
                                           const unsigned int q, const double R,
                                           ShapeGradient &g) const
     {
-      const unsigned int   ca = component[a];
-      const Tensor<1, dim> gr = v.shape_grad_component(a, q, ca);
-      g.n                     = 0;
+      const unsigned int ca = component[a];
+      const double      *gr = cell.grad + (q * n_dofs + a) * dim;
+      g.n                   = 0;
       for (unsigned int J_ = 0; J_ < dim; ++J_)
         {
           g.c[g.n]   = where[ca][J_];
@@ -80,7 +80,7 @@ namespace anvil
       if (axisymmetric && ca == 0)
         {
           g.c[g.n]   = where[2][2];
-          g.v[g.n++] = v.shape_value_component(a, q, 0) / R;
+          g.v[g.n++] = cell.value[q * n_dofs + a] / R;
         }
     }
 

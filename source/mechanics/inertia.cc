@@ -29,7 +29,7 @@ namespace anvil
         {
           const double w = scratch.points[q].w;
           for (unsigned int a = 0; a < n_dofs; ++a)
-            N[a] = scratch.fe_values.shape_value_component(a, q, component[a]);
+            N[a] = scratch.cell.value[q * n_dofs + a];
           for (unsigned int a = 0; a < n_dofs; ++a)
             for (unsigned int b = 0; b < n_dofs; ++b)
               if (component[a] == component[b])

@@ -116,10 +116,10 @@ namespace anvil
                                           CopyData &copy) const
     {
       const Formulation<dim> &formulation = *context.formulation;
-      const FEValues<dim>    &fe_values   = scratch.fe_values;
+      const ReferenceCell    &ref         = scratch.cell;
       const bool              heat        = context.has_temperature_field();
       if (formulation.f_bar)
-        f_bar.evaluate_centre(cell, scratch);
+        f_bar.evaluate_centre(scratch);
       auto cell_points = (*context.points)[cell];
 
       const MaterialModel &model = *context.materials->at(cell->material_id());
@@ -128,10 +128,9 @@ namespace anvil
       for (unsigned int q = 0; q < scratch.points.size(); ++q)
         {
           PointValues       &p     = scratch.points[q];
-          const double       R     = formulation.radius(fe_values, q);
-          const Tensor<2, 3> F     = formulation.deformation_gradient(fe_values, q, scratch.local_u, R);
-          const Tensor<2, 3> F_old =
-            formulation.deformation_gradient(fe_values, q, scratch.local_u_old, R);
+          const double       R     = formulation.radius(ref, q);
+          const Tensor<2, 3> F     = formulation.deformation_gradient(ref, q, scratch.local_u, R);
+          const Tensor<2, 3> F_old = formulation.deformation_gradient(ref, q, scratch.local_u_old, R);
           const double J = determinant(F);
           if (!(J > 0) || !(determinant(0.5 * (F + F_old)) > 0) || !(scratch.J0 > 0))
             {
@@ -176,7 +175,7 @@ namespace anvil
           p.F_mat     = F_mat;
           p.point     = &point;
           p.adiabatic = increment.adiabatic;
-          p.w         = formulation.weight(fe_values, q, R);
+          p.w         = formulation.weight(ref, q, R);
           // Heat sources χẆirr + Ẇthel (eq. 20–22) and the temperature the point ends at.
           (*context.heat_sources)(cell, q) =
             response.plastic_dissipation_rate + response.thermoelastic_heating_rate;

@@ -29,7 +29,7 @@ namespace anvil
           for (unsigned int a = 0; a < n_dofs; ++a)
             {
               ShapeGradient &g = scratch.G[a];
-              formulation.shape_gradient(scratch.fe_values, a, q, p.R, g);
+              formulation.shape_gradient(scratch.cell, a, q, p.R, g);
               double f = 0;
               for (unsigned int e = 0; e < g.n; ++e)
                 {

@@ -45,7 +45,7 @@ namespace anvil
         : formulation(formulation)
       {}
       /// J₀ at t_n+1 and t_n, F₀⁻¹ and tr(F₀⁻¹ ∂F₀/∂u_a) at the cell centre.
-      void evaluate_centre(const CellIterator<dim> &cell, ScratchData<dim> &scratch) const;
+      void evaluate_centre(ScratchData<dim> &scratch) const;
       /// β = (J₀/J)^α and F̄ (returned), with F̄_n of the old configuration in @p F_mat_old.
       dealii::Tensor<2, 3> material_gradient(const ScratchData<dim>     &scratch,
                                              const dealii::Tensor<2, 3> &F,

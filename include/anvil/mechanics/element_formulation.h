@@ -5,6 +5,7 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <anvil/material/kinematics.h>
+#include <anvil/mechanics/reference_values.h>
 
 #include <vector>
 
@@ -59,11 +60,21 @@ namespace anvil
       dealii::Tensor<2, 3> deformation_gradient(const dealii::Tensor<2, dim> &grad_u,
                                                 double                        radial_displacement,
                                                 double                        radius) const;
-      /// F at point @p q of @p v from the cell's dof values (R: radius for the hoop term).
-      dealii::Tensor<2, 3> deformation_gradient(const dealii::FEValues<dim> &v,
-                                                unsigned int                 q,
-                                                const std::vector<double>   &values,
-                                                double                       radius) const;
+      /// F from the cell's dof values @p values, with @p grad ([a][d]) and
+      /// @p value ([a]) the shape functions at one point (R: radius for the hoop term).
+      dealii::Tensor<2, 3> deformation_gradient(const double              *grad,
+                                                const double              *value,
+                                                const std::vector<double> &values,
+                                                double                     radius) const;
+      /// F at point @p q of @p cell.
+      dealii::Tensor<2, 3> deformation_gradient(const ReferenceCell       &cell,
+                                                const unsigned int         q,
+                                                const std::vector<double> &values,
+                                                const double               radius) const
+      {
+        return deformation_gradient(cell.grad + q * n_dofs * dim, cell.value + q * n_dofs, values,
+                                    radius);
+      }
       /// det of the active block of F.
       double active_det(const dealii::Tensor<2, 3> &F) const
       {
@@ -77,22 +88,22 @@ namespace anvil
           Fb[2][2] = 1;
         return Fb;
       }
-      /// Radius of point @p q for the hoop term (1 when not axisymmetric).
-      double radius(const dealii::FEValues<dim> &v, const unsigned int q) const
+      /// Radius of point @p q (n_q: the centre) for the hoop term (1 when not axisymmetric).
+      double radius(const ReferenceCell &cell, const unsigned int q) const
       {
-        return axisymmetric ? v.quadrature_point(q)[0] : 1.;
+        return axisymmetric ? cell.x[q] : 1.;
       }
       /// Integration weight of point @p q: per full ring 2πR in the axisymmetric case.
-      double weight(const dealii::FEValues<dim> &v, const unsigned int q, const double R) const
+      double weight(const ReferenceCell &cell, const unsigned int q, const double R) const
       {
-        return v.JxW(q) * (axisymmetric ? 2 * dealii::numbers::PI * R : 1.);
+        return cell.JxW[q] * (axisymmetric ? 2 * dealii::numbers::PI * R : 1.);
       }
       /// G_a = ∂F/∂u_a of shape function @p a at point @p q (hoop entry N_a/R included).
-      void shape_gradient(const dealii::FEValues<dim> &v,
-                          unsigned int                 a,
-                          unsigned int                 q,
-                          double                       R,
-                          ShapeGradient               &g) const;
+      void shape_gradient(const ReferenceCell &cell,
+                          unsigned int         a,
+                          unsigned int         q,
+                          double               R,
+                          ShapeGradient       &g) const;
     };
   } // namespace MechanicsAssembly
 } // namespace anvil
