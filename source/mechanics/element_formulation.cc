@@ -5,6 +5,8 @@
 #include <anvil/core/instantiate.h>
 #include <anvil/mechanics/element_formulation.h>
 
+#include <algorithm>
+
 namespace anvil
 {
   namespace MechanicsAssembly
@@ -24,9 +26,14 @@ namespace anvil
                               TangentDirections::in_plane(2, axisymmetric))
       , n_dofs(fe.n_dofs_per_cell())
       , component(fe.n_dofs_per_cell())
+      , node(fe.n_dofs_per_cell())
     {
       for (unsigned int i = 0; i < n_dofs; ++i)
-        component[i] = fe.system_to_component_index(i).first;
+        {
+          component[i] = fe.system_to_component_index(i).first;
+          node[i]      = fe.system_to_component_index(i).second;
+          n_nodes      = std::max(n_nodes, node[i] + 1);
+        }
       for (auto &row : where)
         for (int &x : row)
           x = -1;

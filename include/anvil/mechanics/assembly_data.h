@@ -144,6 +144,7 @@ namespace anvil
       std::vector<std::array<double, 9>>          AG;
 
       dealii::FullMatrix<double>          cell_mass; // inertia
+      std::vector<double>                 node_mass; // inertia: per node pair
       std::vector<dealii::Tensor<2, dim>> face_grad_u;
       std::vector<dealii::Tensor<1, dim>> face_u;
       std::vector<dealii::Tensor<1, dim>> face_d_nda; // follower pressure: δ(n da) per column

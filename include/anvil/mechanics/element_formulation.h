@@ -51,8 +51,10 @@ namespace anvil
       const double                    alpha;
       const TangentDirections         directions;
       const unsigned int              n_dofs;
-      /// Vector component of each shape function.
-      std::vector<unsigned int>       component;
+      /// Vector component of each shape function, and its node (the scalar
+      /// shape function it carries; n_nodes of them).
+      std::vector<unsigned int>       component, node;
+      unsigned int                    n_nodes = 0;
       /// Index of the direction (k, L) in `directions`, −1 if not used.
       int                             where[3][3];
 
