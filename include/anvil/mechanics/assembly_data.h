@@ -135,6 +135,7 @@ namespace anvil
       std::vector<double>  center_trace;
 
       std::vector<PointValues> points;
+      IncrementalKinematics    audit_kin; // the energy audit's true kinematics (F-bar)
 
       // Stress divergence: G_a, δσ per direction, A = ∂P_c/∂F_d, T0 (F-bar), A : G_b.
       std::vector<ShapeGradient>                  G;
