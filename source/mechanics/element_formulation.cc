@@ -71,7 +71,7 @@ namespace anvil
     }
 
     template <int dim>
-    void Formulation<dim>::shape_gradient(const ReferenceCell &cell, const unsigned int a,
+    void Formulation<dim>::shape_gradient(const ReferenceCellValues &cell, const unsigned int a,
                                           const unsigned int q, const double R,
                                           ShapeGradient &g) const
     {

@@ -18,7 +18,7 @@ namespace anvil
     void FBar<dim>::evaluate_centre(ScratchData<dim> &scratch) const
     {
       // Cell centre: J₀ and ∂J₀ for F-bar.
-      const ReferenceCell &ref = scratch.cell;
+      const ReferenceCellValues &ref = scratch.cell;
       const unsigned int   n_q = scratch.points.size();
       const double         R0  = formulation.radius(ref, n_q);
       const Tensor<2, 3>   F0 =

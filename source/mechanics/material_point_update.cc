@@ -132,7 +132,7 @@ namespace anvil
                                           CopyData &copy) const
     {
       const Formulation<dim> &formulation = *context.formulation;
-      const ReferenceCell    &ref         = scratch.cell;
+      const ReferenceCellValues    &ref         = scratch.cell;
       const bool              heat        = context.has_temperature_field();
       if (formulation.f_bar)
         f_bar.evaluate_centre(scratch);

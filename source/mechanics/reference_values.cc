@@ -53,10 +53,10 @@ namespace anvil
     }
 
     template <int dim>
-    ReferenceCell ReferenceValues<dim>::view(const double *entry, const double *x,
+    ReferenceCellValues ReferenceValues<dim>::view(const double *entry, const double *x,
                                              const unsigned int n_q, const unsigned int n_dofs)
     {
-      ReferenceCell c;
+      ReferenceCellValues c;
       c.grad         = entry;
       c.value        = c.grad + n_q * n_dofs * dim;
       c.JxW          = c.value + n_q * n_dofs;

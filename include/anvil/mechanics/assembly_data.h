@@ -114,7 +114,7 @@ namespace anvil
 
       /// The cell's shape functions, JxW and radii (what the kernels read):
       /// ReferenceValues' entry, or fe_values copied into `own_values`.
-      ReferenceCell       cell;
+      ReferenceCellValues       cell;
       std::vector<double> own_values, own_radii;
       /// Points cell at the values of @p c: from @p reference if not null,
       /// else by FEValues (fe_center too if @p centre).

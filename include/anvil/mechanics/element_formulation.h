@@ -69,7 +69,7 @@ namespace anvil
                                                 const std::vector<double> &values,
                                                 double                     radius) const;
       /// F at point @p q of @p cell.
-      dealii::Tensor<2, 3> deformation_gradient(const ReferenceCell       &cell,
+      dealii::Tensor<2, 3> deformation_gradient(const ReferenceCellValues       &cell,
                                                 const unsigned int         q,
                                                 const std::vector<double> &values,
                                                 const double               radius) const
@@ -91,17 +91,17 @@ namespace anvil
         return Fb;
       }
       /// Radius of point @p q (n_q: the centre) for the hoop term (1 when not axisymmetric).
-      double radius(const ReferenceCell &cell, const unsigned int q) const
+      double radius(const ReferenceCellValues &cell, const unsigned int q) const
       {
         return axisymmetric ? cell.x[q] : 1.;
       }
       /// Integration weight of point @p q: per full ring 2πR in the axisymmetric case.
-      double weight(const ReferenceCell &cell, const unsigned int q, const double R) const
+      double weight(const ReferenceCellValues &cell, const unsigned int q, const double R) const
       {
         return cell.JxW[q] * (axisymmetric ? 2 * dealii::numbers::PI * R : 1.);
       }
       /// G_a = ∂F/∂u_a of shape function @p a at point @p q (hoop entry N_a/R included).
-      void shape_gradient(const ReferenceCell &cell,
+      void shape_gradient(const ReferenceCellValues &cell,
                           unsigned int         a,
                           unsigned int         q,
                           double               R,

@@ -21,7 +21,7 @@ namespace anvil
      * mesh (P = J σ F⁻ᵀ, stress_divergence.cc), so none of this changes
      * between assemblies.
      */
-    struct ReferenceCell
+    struct ReferenceCellValues
     {
       const double *grad         = nullptr; // [q][a][d]
       const double *value        = nullptr; // [q][a]
@@ -34,7 +34,7 @@ namespace anvil
     };
 
     /**
-     * The ReferenceCell of every cell of the assembly loop, computed once per
+     * The ReferenceCellValues of every cell of the assembly loop, computed once per
      * mesh by FEValues with the assembly's mapping: the same bits a fresh
      * FEValues::reinit() gives at every assembly (AssemblyMapping makes them
      * depend on the cell alone). Cells whose values are equal share one entry
@@ -61,7 +61,7 @@ namespace anvil
                        double                          *entry,
                        double                          *x);
       /// The view of @p entry and @p x as filled by fill().
-      static ReferenceCell view(const double *entry, const double *x, unsigned int n_q,
+      static ReferenceCellValues view(const double *entry, const double *x, unsigned int n_q,
                                 unsigned int n_dofs);
 
       /**
@@ -84,7 +84,7 @@ namespace anvil
         return &fe == fe_ptr && quadrature.size() == n_q && with_radius == radius;
       }
 
-      ReferenceCell cell(const unsigned int active_cell_index) const
+      ReferenceCellValues cell(const unsigned int active_cell_index) const
       {
         return view(entries.data() + entry_of[active_cell_index] * size,
                     radius ? radii.data() + static_cast<std::size_t>(active_cell_index) * (n_q + 1) :
