@@ -90,21 +90,25 @@ namespace
   }
 
   template <int dim>
-  std::vector<typename Triangulation<dim>::cell_iterator> loop_cells(const Triangulation<dim> &tria)
-  {
-    std::vector<typename Triangulation<dim>::cell_iterator> cells;
-    for (const auto &cell : tria.active_cell_iterators())
-      cells.push_back(cell);
-    return cells;
-  }
-
-  template <int dim>
   std::vector<unsigned int> components(const FiniteElement<dim> &fe)
   {
     std::vector<unsigned int> c(fe.n_dofs_per_cell());
     for (unsigned int i = 0; i < c.size(); ++i)
       c[i] = fe.system_to_component_index(i).first;
     return c;
+  }
+
+  /// The values of @p tria's cells (active order) on @p mapping, Q1^dim, QGauss(2).
+  template <int dim>
+  const ReferenceValues<dim> *build(const Triangulation<dim> &tria, const FiniteElement<dim> &fe,
+                                    AssemblyMapping<dim> &mapping, const bool with_radius,
+                                    const std::size_t max_bytes = 64u << 20)
+  {
+    std::vector<typename Triangulation<dim>::cell_iterator> cells;
+    for (const auto &cell : tria.active_cell_iterators())
+      cells.push_back(cell);
+    mapping.reinit(cells, tria.n_active_cells());
+    return mapping.reference_values(fe, QGauss<dim>(2), components(fe), with_radius, max_bytes);
   }
 } // namespace
 
@@ -118,8 +122,7 @@ int main()
     const FESystem<2>  fe(FE_Q<2>(1), 2);
     const auto         component = components(fe);
     AssemblyMapping<2> mapping;
-    mapping.reinit(loop_cells(tria), tria.n_active_cells());
-    const auto *values = mapping.reference_values(fe, QGauss<2>(2), component, true);
+    const auto        *values = build(tria, fe, mapping, true);
     check(values != nullptr, "2D: reference values built");
     if (values)
       {
@@ -136,8 +139,7 @@ int main()
         check(values->n_entries() <= 6, "2D: translated cells share their entries");
       }
     AssemblyMapping<2> small;
-    small.reinit(loop_cells(tria), tria.n_active_cells());
-    check(small.reference_values(fe, QGauss<2>(2), component, true, 500) == nullptr,
+    check(build(tria, fe, small, true, 500) == nullptr,
           "2D: a budget below one entry (992 B) gives none");
   }
   {
@@ -147,8 +149,7 @@ int main()
     const FESystem<3>  fe(FE_Q<3>(1), 3);
     const auto         component = components(fe);
     AssemblyMapping<3> mapping;
-    mapping.reinit(loop_cells(tria), tria.n_active_cells());
-    const auto *values = mapping.reference_values(fe, QGauss<3>(2), component, false);
+    const auto        *values = build(tria, fe, mapping, false);
     check(values != nullptr, "3D: reference values built");
     if (values)
       {
