@@ -66,10 +66,9 @@ namespace anvil
                   MaterialResponse        &response) override
       {
         response.volume_ratio_sensitivity = SymmetricTensor<2, 3>();
+        Rotated rotated = rotate(increment.rotation_increment); // independent of T: once for every return map below
         if (!increment.adiabatic)
           {
-            Rotated rotated;
-            rotate(increment, rotated);
             compute(increment, increment.temperature, increment.temperature_increment, request,
                     response, rotated);
             return;
@@ -89,8 +88,6 @@ namespace anvil
         // first residual is already small and the secant needs fewer return
         // maps than from 0.
         double x0 = 0, f0 = 0, x1 = adiabatic_guess, f1 = 0;
-        Rotated rotated; // independent of the temperature: once for every return map below
-        rotate(increment, rotated);
         for (unsigned int it = 0; it < 50; ++it)
           {
             compute(increment, increment.temperature + x1, increment.temperature_increment + x1,
@@ -177,14 +174,9 @@ namespace anvil
       }
 
     private:
-      /// What every return map of one update shares: σ̃ₙ = ΔR σₙ ΔRᵀ (raw
-      /// components) and q_n = √(3/2)|dev σₙ| (computed where first needed).
-      struct Rotated
-      {
-        double trial[6];
-        double q_old = -1;
-      };
-      void rotate(const MaterialIncrement &inc, Rotated &rotated) const;
+      /// σ̃ₙ = ΔR σₙ ΔRᵀ (raw) and q_n = √(3/2)|dev σₙ| (once needed): an update's return maps share them.
+      struct Rotated { double trial[6], q_old = -1; };
+      Rotated rotate(const Tensor<2, 3> &R) const;
       void compute(const MaterialIncrement &inc, double T, double dT, MaterialRequest request,
                    MaterialResponse &response, Rotated &rotated);
       /// Δε̄ solving r(Δε̄) = q_tr − 3GΔε̄ − σᵥ(ε̄ₙ + Δε̄) − V(Δε̄) = 0 (0: the root
@@ -377,23 +369,20 @@ namespace anvil
         }
     }
 
-    void J2Point::rotate(const MaterialIncrement &inc, Rotated &rotated) const
-    {
-      // σ̃ = ΔR σ_n ΔRᵀ; σ_n as a full matrix, A = ΔR σ_n, σ̃_ij = A_il ΔR_jl.
+    J2Point::Rotated J2Point::rotate(const Tensor<2, 3> &R) const
+    { // σ̃ = ΔR σ_n ΔRᵀ; σ_n as a full matrix, A = ΔR σ_n, σ̃_ij = A_il ΔR_jl.
       static constexpr unsigned int row[6] = {0, 1, 2, 0, 0, 1}, col[6] = {0, 1, 2, 1, 2, 2};
-      const Tensor<2, 3> &R  = inc.rotation_increment;
-      const double       *sn = stress_n.begin_raw();
-      const double S[3][3] = {{sn[0], sn[3], sn[4]}, {sn[3], sn[1], sn[5]}, {sn[4], sn[5], sn[2]}};
-      double       A[3][3];
+      Rotated             rotated;
+      const double *sn = stress_n.begin_raw(), S[3][3] = {{sn[0], sn[3], sn[4]}, {sn[3], sn[1], sn[5]},
+                                                          {sn[4], sn[5], sn[2]}};
+      double A[3][3];
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int l = 0; l < 3; ++l)
           A[i][l] = R[i][0] * S[0][l] + R[i][1] * S[1][l] + R[i][2] * S[2][l];
       for (unsigned int c = 0; c < 6; ++c)
-        {
-          const unsigned int i = row[c], j = col[c];
-          rotated.trial[c]     = A[i][0] * R[j][0] + A[i][1] * R[j][1] + A[i][2] * R[j][2];
-        }
-      rotated.q_old = -1;
+        rotated.trial[c] = A[row[c]][0] * R[col[c]][0] + A[row[c]][1] * R[col[c]][1] +
+                           A[row[c]][2] * R[col[c]][2];
+      return rotated;
     }
 
     void J2Point::compute(const MaterialIncrement &inc, const double T, const double dT,
@@ -416,9 +405,7 @@ namespace anvil
 
       // Trial state: rotated σ_n plus H(T) : (Δε − βΔT I), eq. (9), (10), (19),
       // on the raw components (00, 11, 22, 01, 02, 12).
-      double trial[6];
-      for (unsigned int c = 0; c < 6; ++c)
-        trial[c] = rotated.trial[c];
+      double trial[6]; std::copy(rotated.trial, rotated.trial + 6, trial);
       const double *dstrain = inc.strain_increment.begin_raw();
       double        de[6];
       for (unsigned int c = 0; c < 6; ++c)
@@ -566,9 +553,8 @@ namespace anvil
           // Ẇirr = σ̄ ε̄̇ (eq. 21) with σ̄ averaged over the step (exact for linear
           // hardening); flow starts at the yield stress if the step began elastic.
           const double q_end   = q_trial - 3 * G * dp;
-          if (rotated.q_old < 0)
-            rotated.q_old = std::sqrt(1.5) * deviator(stress_n).norm();
-          const double q_old   = rotated.q_old;
+          const double q_old   = rotated.q_old >= 0 ? rotated.q_old :
+                                   (rotated.q_old = std::sqrt(1.5) * deviator(stress_n).norm());
           const double q_start = std::max(q_old, Y_start.stress);
           work                 = 0.5 * (q_start + q_end) * dp;
           // d(work)/dq_trial with dΔε̄/dq_tr = 1/(3G + H), dq_end/dq_tr = H/(3G + H).
