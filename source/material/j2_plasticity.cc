@@ -66,10 +66,11 @@ namespace anvil
                   MaterialResponse        &response) override
       {
         response.volume_ratio_sensitivity = SymmetricTensor<2, 3>();
+        Rotated rotated = rotate(increment.rotation_increment); // independent of T: once for every return map below
         if (!increment.adiabatic)
           {
             compute(increment, increment.temperature, increment.temperature_increment, request,
-                    response);
+                    response, rotated);
             return;
           }
         // Armero–Simo: the step's own heating changes the temperature the
@@ -90,7 +91,7 @@ namespace anvil
         for (unsigned int it = 0; it < 50; ++it)
           {
             compute(increment, increment.temperature + x1, increment.temperature_increment + x1,
-                    iterate, response);
+                    iterate, response, rotated);
             f1 = response.adiabatic_temperature_increment - x1;
             if (std::abs(f1) <= 1e-12 * (1 + std::abs(x1)))
               break;
@@ -103,7 +104,7 @@ namespace anvil
           }
         if (tangent)
           compute(increment, increment.temperature + x1, increment.temperature_increment + x1,
-                  inner, response);
+                  inner, response, rotated);
         response.adiabatic_temperature_increment = x1;
         adiabatic_guess                          = x1;
         if (tangent)
@@ -120,7 +121,7 @@ namespace anvil
             const double                h            = 1e-7 * (1 + std::abs(increment.temperature));
             MaterialResponse            shifted;
             compute(increment, increment.temperature + x1 + h,
-                    increment.temperature_increment + x1 + h, request_stress, shifted);
+                    increment.temperature_increment + x1 + h, request_stress, shifted, rotated);
             current = saved_stress, eps_c = saved_eps;
             const double df_dx =
               (shifted.adiabatic_temperature_increment - (x1 + f1)) / h; // f(x1) = x1 + f1
@@ -173,8 +174,11 @@ namespace anvil
       }
 
     private:
+      /// σ̃ₙ = ΔR σₙ ΔRᵀ (raw) and q_n = √(3/2)|dev σₙ| (once needed): an update's return maps share them.
+      struct Rotated { double trial[6], q_old = -1; };
+      Rotated rotate(const Tensor<2, 3> &R) const;
       void compute(const MaterialIncrement &inc, double T, double dT, MaterialRequest request,
-                   MaterialResponse &response);
+                   MaterialResponse &response, Rotated &rotated);
       /// Δε̄ solving r(Δε̄) = q_tr − 3GΔε̄ − σᵥ(ε̄ₙ + Δε̄) − V(Δε̄) = 0 (0: the root
       /// is below working precision), with σᵥ and V at the returned Δε̄ in @p Y and
       /// @p V. @p Y0 is σᵥ at ε̄ₙ.
@@ -365,8 +369,25 @@ namespace anvil
         }
     }
 
+    J2Point::Rotated J2Point::rotate(const Tensor<2, 3> &R) const
+    { // σ̃ = ΔR σ_n ΔRᵀ; σ_n as a full matrix, A = ΔR σ_n, σ̃_ij = A_il ΔR_jl.
+      static constexpr unsigned int row[6] = {0, 1, 2, 0, 0, 1}, col[6] = {0, 1, 2, 1, 2, 2};
+      Rotated             rotated;
+      const double *sn = stress_n.begin_raw(), S[3][3] = {{sn[0], sn[3], sn[4]}, {sn[3], sn[1], sn[5]},
+                                                          {sn[4], sn[5], sn[2]}};
+      double A[3][3];
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int l = 0; l < 3; ++l)
+          A[i][l] = R[i][0] * S[0][l] + R[i][1] * S[1][l] + R[i][2] * S[2][l];
+      for (unsigned int c = 0; c < 6; ++c)
+        rotated.trial[c] = A[row[c]][0] * R[col[c]][0] + A[row[c]][1] * R[col[c]][1] +
+                           A[row[c]][2] * R[col[c]][2];
+      return rotated;
+    }
+
     void J2Point::compute(const MaterialIncrement &inc, const double T, const double dT,
-                          const MaterialRequest request, MaterialResponse &response)
+                          const MaterialRequest request, MaterialResponse &response,
+                          Rotated &rotated)
     {
       const ElasticLaw &el   = model.elastic;
       const double      K    = el.bulk_modulus(T);
@@ -384,23 +405,7 @@ namespace anvil
 
       // Trial state: rotated σ_n plus H(T) : (Δε − βΔT I), eq. (9), (10), (19),
       // on the raw components (00, 11, 22, 01, 02, 12).
-      static constexpr unsigned int row[6] = {0, 1, 2, 0, 0, 1}, col[6] = {0, 1, 2, 1, 2, 2};
-      const Tensor<2, 3> &R  = inc.rotation_increment;
-      const double       *sn = stress_n.begin_raw();
-      double              trial[6];
-      {
-        // σ̃ = ΔR σ_n ΔRᵀ; σ_n as a full matrix, A = ΔR σ_n, σ̃_ij = A_il ΔR_jl.
-        const double S[3][3] = {{sn[0], sn[3], sn[4]}, {sn[3], sn[1], sn[5]}, {sn[4], sn[5], sn[2]}};
-        double       A[3][3];
-        for (unsigned int i = 0; i < 3; ++i)
-          for (unsigned int l = 0; l < 3; ++l)
-            A[i][l] = R[i][0] * S[0][l] + R[i][1] * S[1][l] + R[i][2] * S[2][l];
-        for (unsigned int c = 0; c < 6; ++c)
-          {
-            const unsigned int i = row[c], j = col[c];
-            trial[c] = A[i][0] * R[j][0] + A[i][1] * R[j][1] + A[i][2] * R[j][2];
-          }
-      }
+      double trial[6]; std::copy(rotated.trial, rotated.trial + 6, trial);
       const double *dstrain = inc.strain_increment.begin_raw();
       double        de[6];
       for (unsigned int c = 0; c < 6; ++c)
@@ -548,7 +553,8 @@ namespace anvil
           // Ẇirr = σ̄ ε̄̇ (eq. 21) with σ̄ averaged over the step (exact for linear
           // hardening); flow starts at the yield stress if the step began elastic.
           const double q_end   = q_trial - 3 * G * dp;
-          const double q_old   = std::sqrt(1.5) * deviator(stress_n).norm();
+          const double q_old   = rotated.q_old >= 0 ? rotated.q_old :
+                                   (rotated.q_old = std::sqrt(1.5) * deviator(stress_n).norm());
           const double q_start = std::max(q_old, Y_start.stress);
           work                 = 0.5 * (q_start + q_end) * dp;
           // d(work)/dq_trial with dΔε̄/dq_tr = 1/(3G + H), dq_end/dq_tr = H/(3G + H).

@@ -75,6 +75,10 @@ namespace anvil
     const BodyForce<dim>           body_force(context);
     const FollowerPressure<dim>    follower_pressure(context);
     const Inertia<dim>             inertia(context);
+    // Shape functions, JxW and radii on the reference mesh: computed once per mesh.
+    const ReferenceValues<dim> *reference = assembly_mapping->reference_values(
+      fe, quadrature, formulation->component, axisymmetric);
+    const bool centre = formulation->f_bar;
 
     // One cell on any thread: its dof values, then the terms in a fixed
     // order (each term's sums run in the order of the serial loop).
@@ -82,7 +86,7 @@ namespace anvil
       copy.failed = false;
       copy.failure.clear();
       copy.max_plastic_increment = 0;
-      scratch.fe_values.reinit(cell);
+      scratch.reinit(cell, reference, formulation->component, centre, axisymmetric);
       cell->get_dof_indices(copy.dof_indices);
       for (unsigned int i = 0; i < copy.dof_indices.size(); ++i)
         {
@@ -127,6 +131,34 @@ namespace anvil
     step_audit.fill(0.);
     max_plastic_increment = 0;
     material_failure.clear();
+    // A cell with no constrained dof and only owned rows adds its matrix by
+    // local row and column numbers, looked up once per dof: Epetra's
+    // SumIntoGlobalValues (what AffineConstraints calls) looks up every
+    // column of every row, 8x the look-ups. The same one addition per entry.
+    // deal.II 9.4 gives only const access to the Epetra matrix; ours is not const.
+    const unsigned int n_dofs = fe.n_dofs_per_cell();
+    std::vector<int>   local_rows(n_dofs), local_cols(n_dofs);
+    auto add_by_local_indices = [&](const CopyData &copy) {
+      auto &matrix = const_cast<Epetra_CrsMatrix &>(system_matrix.trilinos_matrix());
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        {
+          const auto g = static_cast<TrilinosWrappers::types::int_type>(copy.dof_indices[i]);
+          if (active_constraints->is_constrained(copy.dof_indices[i]))
+            return false;
+          local_rows[i] = matrix.LRID(g);
+          local_cols[i] = matrix.LCID(g);
+          if (local_rows[i] < 0 || local_cols[i] < 0)
+            return false;
+        }
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        {
+          const int ierr =
+            matrix.SumIntoMyValues(local_rows[i], n_dofs, &copy.matrix(i, 0), local_cols.data());
+          AssertThrow(ierr == 0, ExcTrilinosError(ierr));
+        }
+      system_rhs.add(copy.dof_indices, copy.rhs);
+      return true;
+    };
     auto copier = [&](const CopyData &copy) {
       if (failed)
         return;
@@ -144,10 +176,10 @@ namespace anvil
       max_plastic_increment = std::max(max_plastic_increment, copy.max_plastic_increment);
       if (dynamic)
         inertia_force.add(copy.dof_indices, copy.inertia);
-      if (with_matrix)
+      if (with_matrix && !add_by_local_indices(copy))
         active_constraints->distribute_local_to_global(copy.matrix, copy.rhs, copy.dof_indices,
                                                        system_matrix, system_rhs);
-      else
+      else if (!with_matrix)
         active_constraints->distribute_local_to_global(copy.rhs, copy.dof_indices, system_rhs);
       internal_force.add(copy.dof_indices, copy.internal);
       external_force.add(copy.dof_indices, copy.external);

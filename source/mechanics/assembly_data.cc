@@ -37,6 +37,8 @@ namespace anvil
       , face_grad_u(face_quadrature.size())
       , face_u(face_quadrature.size())
       , face_d_nda(fe.n_dofs_per_cell())
+      , own_values(ReferenceValues<dim>::entry_size(quadrature.size(), fe.n_dofs_per_cell()))
+      , own_radii(quadrature.size() + 1)
     {}
 
     template <int dim>
@@ -45,6 +47,28 @@ namespace anvil
                     other.fe_values.get_quadrature(), other.fe_face_values.get_quadrature(),
                     other.cell_flags)
     {}
+
+    template <int dim>
+    void ScratchData<dim>::reinit(const typename Triangulation<dim>::active_cell_iterator &c,
+                                  const ReferenceValues<dim>      *reference,
+                                  const std::vector<unsigned int> &component,
+                                  const bool                       centre,
+                                  const bool                       with_radius)
+    {
+      if (reference)
+        {
+          cell = reference->cell(c->active_cell_index());
+          return;
+        }
+      fe_values.reinit(c);
+      if (centre)
+        fe_center.reinit(c);
+      double *x = with_radius ? own_radii.data() : nullptr;
+      ReferenceValues<dim>::fill(fe_values, centre ? &fe_center : nullptr, component,
+                                 own_values.data(), x);
+      cell = ReferenceValues<dim>::view(own_values.data(), x, fe_values.n_quadrature_points,
+                                        fe_values.dofs_per_cell);
+    }
 
     CopyData::CopyData(const unsigned int n_dofs, const unsigned int n_q_points)
       : matrix(n_dofs, n_dofs)

@@ -20,6 +20,10 @@ namespace anvil
     AssemblyMapping<dim>::AssemblyMapping(const AssemblyMapping &other)
       : MappingQ<dim>(other)
       , chain_start(other.chain_start)
+      , loop_cells(other.loop_cells)
+      , n_active_cells(other.n_active_cells)
+      , values(other.values)
+      , values_refused(other.values_refused)
     {}
 
     template <int dim>
@@ -31,8 +35,12 @@ namespace anvil
     template <int dim>
     void AssemblyMapping<dim>::reinit(
       const std::vector<typename Triangulation<dim>::cell_iterator> &cells,
-      const unsigned int                                              n_active_cells)
+      const unsigned int                                              n_active_cells_)
     {
+      n_active_cells = n_active_cells_;
+      loop_cells     = cells;
+      values.reset();
+      values_refused = false;
       // The test FEValues::reinit() makes against the cell it saw before.
       chain_start.assign(n_active_cells, typename Triangulation<dim>::cell_iterator());
       for (unsigned int i = 0; i < cells.size(); ++i)
@@ -40,6 +48,29 @@ namespace anvil
           (i > 0 && cells[i]->is_translation_of(cells[i - 1])) ?
             chain_start[cells[i - 1]->active_cell_index()] :
             cells[i];
+    }
+
+    template <int dim>
+    const ReferenceValues<dim> *
+    AssemblyMapping<dim>::reference_values(const FiniteElement<dim>        &fe,
+                                           const Quadrature<dim>           &quadrature,
+                                           const std::vector<unsigned int> &component,
+                                           const bool                       with_radius,
+                                           const std::size_t                max_bytes) const
+    {
+      if (values && values->matches(fe, quadrature, with_radius))
+        return values.get();
+      if (values_refused)
+        return nullptr;
+      auto v = std::make_shared<ReferenceValues<dim>>();
+      if (!v->build(*this, fe, quadrature, component, loop_cells, n_active_cells, with_radius,
+                    max_bytes))
+        {
+          values_refused = true;
+          return nullptr;
+        }
+      values = v;
+      return values.get();
     }
 
     template <int dim>

@@ -19,7 +19,7 @@ namespace anvil
           for (unsigned int a = 0; a < formulation.n_dofs; ++a)
             {
               const unsigned int ca = formulation.component[a];
-              const double       Na = scratch.fe_values.shape_value_component(a, q, ca);
+              const double       Na = scratch.cell.value[q * formulation.n_dofs + a];
               copy.external(a) += scratch.rho * context.gravity[ca] * Na * w;
             }
         }

@@ -5,6 +5,8 @@
 #include <anvil/core/instantiate.h>
 #include <anvil/mechanics/element_formulation.h>
 
+#include <algorithm>
+
 namespace anvil
 {
   namespace MechanicsAssembly
@@ -24,9 +26,14 @@ namespace anvil
                               TangentDirections::in_plane(2, axisymmetric))
       , n_dofs(fe.n_dofs_per_cell())
       , component(fe.n_dofs_per_cell())
+      , node(fe.n_dofs_per_cell())
     {
       for (unsigned int i = 0; i < n_dofs; ++i)
-        component[i] = fe.system_to_component_index(i).first;
+        {
+          component[i] = fe.system_to_component_index(i).first;
+          node[i]      = fe.system_to_component_index(i).second;
+          n_nodes      = std::max(n_nodes, node[i] + 1);
+        }
       for (auto &row : where)
         for (int &x : row)
           x = -1;
@@ -45,32 +52,32 @@ namespace anvil
     }
 
     template <int dim>
-    Tensor<2, 3> Formulation<dim>::deformation_gradient(const FEValues<dim>       &v,
-                                                        const unsigned int         q,
+    Tensor<2, 3> Formulation<dim>::deformation_gradient(const double              *grad,
+                                                        const double              *value,
                                                         const std::vector<double> &values,
                                                         const double               R) const
     {
-      Tensor<2, dim> grad;
+      Tensor<2, dim> g;
       double         u_r = 0;
       for (unsigned int i = 0; i < n_dofs; ++i)
         {
-          const Tensor<1, dim> g = v.shape_grad_component(i, q, component[i]);
+          const unsigned int c = component[i];
           for (unsigned int d = 0; d < dim; ++d)
-            grad[component[i]][d] += values[i] * g[d];
-          if (axisymmetric && component[i] == 0)
-            u_r += values[i] * v.shape_value_component(i, q, 0);
+            g[c][d] += values[i] * grad[i * dim + d];
+          if (axisymmetric && c == 0)
+            u_r += values[i] * value[i];
         }
-      return deformation_gradient(grad, u_r, R);
+      return deformation_gradient(g, u_r, R);
     }
 
     template <int dim>
-    void Formulation<dim>::shape_gradient(const FEValues<dim> &v, const unsigned int a,
+    void Formulation<dim>::shape_gradient(const ReferenceCellValues &cell, const unsigned int a,
                                           const unsigned int q, const double R,
                                           ShapeGradient &g) const
     {
-      const unsigned int   ca = component[a];
-      const Tensor<1, dim> gr = v.shape_grad_component(a, q, ca);
-      g.n                     = 0;
+      const unsigned int ca = component[a];
+      const double      *gr = cell.grad + (q * n_dofs + a) * dim;
+      g.n                   = 0;
       for (unsigned int J_ = 0; J_ < dim; ++J_)
         {
           g.c[g.n]   = where[ca][J_];
@@ -80,7 +87,7 @@ namespace anvil
       if (axisymmetric && ca == 0)
         {
           g.c[g.n]   = where[2][2];
-          g.v[g.n++] = v.shape_value_component(a, q, 0) / R;
+          g.v[g.n++] = cell.value[q * n_dofs + a] / R;
         }
     }
 

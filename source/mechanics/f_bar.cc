@@ -15,28 +15,29 @@ namespace anvil
     using namespace dealii;
 
     template <int dim>
-    void FBar<dim>::evaluate_centre(const CellIterator<dim> &cell, ScratchData<dim> &scratch) const
+    void FBar<dim>::evaluate_centre(ScratchData<dim> &scratch) const
     {
       // Cell centre: J₀ and ∂J₀ for F-bar.
-      FEValues<dim> &fe_center = scratch.fe_center;
-      fe_center.reinit(cell);
-      const double       R0     = formulation.radius(fe_center, 0);
-      const Tensor<2, 3> F0     = formulation.deformation_gradient(fe_center, 0, scratch.local_u, R0);
+      const ReferenceCellValues &ref = scratch.cell;
+      const unsigned int   n_q = scratch.points.size();
+      const double         R0  = formulation.radius(ref, n_q);
+      const Tensor<2, 3>   F0 =
+        formulation.deformation_gradient(ref.centre_grad, ref.centre_value, scratch.local_u, R0);
       const Tensor<2, 3> F0_old =
-        formulation.deformation_gradient(fe_center, 0, scratch.local_u_old, R0);
+        formulation.deformation_gradient(ref.centre_grad, ref.centre_value, scratch.local_u_old, R0);
       scratch.J0     = formulation.active_det(F0);
       scratch.J0_old = formulation.active_det(F0_old);
       scratch.F0_inv = invert(F0);
       const Tensor<2, 3> &F0_inv = scratch.F0_inv;
       for (unsigned int b = 0; b < formulation.n_dofs; ++b)
         {
-          const unsigned int   cb = formulation.component[b];
-          const Tensor<1, dim> g  = fe_center.shape_grad_component(b, 0, cb);
-          double               tr = 0;
+          const unsigned int cb = formulation.component[b];
+          const double      *g  = ref.centre_grad + b * dim;
+          double             tr = 0;
           for (unsigned int L = 0; L < dim; ++L)
             tr += F0_inv[L][cb] * g[L];
           if (formulation.axisymmetric && cb == 0)
-            tr += F0_inv[2][2] * fe_center.shape_value_component(b, 0, 0) / R0;
+            tr += F0_inv[2][2] * ref.centre_value[b] / R0;
           scratch.center_trace[b] = tr;
         }
     }

@@ -20,21 +20,30 @@ namespace anvil
         scratch.local_a[i] =
           newmark_acceleration(scratch.local_u[i], scratch.local_u_old[i], scratch.local_v_old[i],
                                scratch.local_a_old[i], context.time_step, context.newmark_beta);
-      // Mass on the reference configuration: ρ₀ dV is conserved.
-      FullMatrix<double> &cell_mass = scratch.cell_mass;
-      cell_mass                     = 0;
-      std::array<double, 81> N; // N_a at q, up to 27-node hexahedra x 3 components
-      AssertThrow(n_dofs <= N.size(), ExcInternalError());
+      // Mass on the reference configuration: ρ₀ dV is conserved. Shape
+      // functions a, b of one component carry the scalar N_i, N_j of their
+      // nodes: the node mass m_ij = Σ ρ N_i N_j w, the same products and sums
+      // per entry, once per node pair instead of once per dof pair.
+      const unsigned int n_nodes = formulation.n_nodes;
+      const auto        &node    = formulation.node;
+      std::vector<double> &m     = scratch.node_mass;
+      m.assign(n_nodes * n_nodes, 0.);
+      std::array<double, 27> N; // N_i at q, up to 27-node hexahedra
+      AssertThrow(n_nodes <= N.size(), ExcInternalError());
       for (unsigned int q = 0; q < scratch.points.size(); ++q)
         {
-          const double w = scratch.points[q].w;
+          const double  w     = scratch.points[q].w;
+          const double *value = scratch.cell.value + q * n_dofs;
           for (unsigned int a = 0; a < n_dofs; ++a)
-            N[a] = scratch.fe_values.shape_value_component(a, q, component[a]);
-          for (unsigned int a = 0; a < n_dofs; ++a)
-            for (unsigned int b = 0; b < n_dofs; ++b)
-              if (component[a] == component[b])
-                cell_mass(a, b) += scratch.rho * N[a] * N[b] * w;
+            N[node[a]] = value[a];
+          for (unsigned int i = 0; i < n_nodes; ++i)
+            for (unsigned int j = 0; j < n_nodes; ++j)
+              m[i * n_nodes + j] += scratch.rho * N[i] * N[j] * w;
         }
+      FullMatrix<double> &cell_mass = scratch.cell_mass;
+      for (unsigned int a = 0; a < n_dofs; ++a)
+        for (unsigned int b = 0; b < n_dofs; ++b)
+          cell_mass(a, b) = component[a] == component[b] ? m[node[a] * n_nodes + node[b]] : 0.;
     }
 
     template <int dim>

@@ -29,12 +29,28 @@ namespace anvil
 
       /// σ̄ = ½(ΔR σ_n ΔRᵀ + σ_n+1): the step's stress on the configuration of
       /// Δε (Hughes–Winget; the update's own rotated σ̃_n, doc/energy_audit.md).
+      /// On raw arrays, with the sums of deal.II's products and symmetrize().
       SymmetricTensor<2, 3> mean_stress(const IncrementalKinematics  &kin,
                                         const SymmetricTensor<2, 3> &stress_old,
                                         const SymmetricTensor<2, 3> &stress_new)
       {
         const Tensor<2, 3> &R = kin.rotation_increment;
-        return 0.5 * (symmetrize(R * Tensor<2, 3>(stress_old) * transpose(R)) + stress_new);
+        double              A[3][3], X[3][3];
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int l = 0; l < 3; ++l)
+            A[i][l] = R[i][0] * stress_old[0][l] + R[i][1] * stress_old[1][l] +
+                      R[i][2] * stress_old[2][l];
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = 0; j < 3; ++j)
+            X[i][j] = A[i][0] * R[j][0] + A[i][1] * R[j][1] + A[i][2] * R[j][2];
+        SymmetricTensor<2, 3> s;
+        for (unsigned int i = 0; i < 3; ++i)
+          {
+            s[i][i] = 0.5 * (X[i][i] + stress_new[i][i]);
+            for (unsigned int j = i + 1; j < 3; ++j)
+              s[i][j] = 0.5 * ((X[i][j] + X[j][i]) * 0.5 + stress_new[i][j]);
+          }
+        return s;
       }
     } // namespace
 
@@ -47,6 +63,7 @@ namespace anvil
                                                const Tensor<2, 3>        &F_old,
                                                const PointValues         &p,
                                                const MaterialIncrement   &increment,
+                                               IncrementalKinematics     &true_kin,
                                                std::array<double, n_audit_terms> &terms) const
     {
       const MaterialPoint         &point   = *p.point;
@@ -61,7 +78,6 @@ namespace anvil
       // What the internal force works with: the true F (∫ σ : ∇ₓδv dv, stress_divergence.cc).
       if (context.formulation->f_bar)
         {
-          IncrementalKinematics true_kin;
           true_kin.reinit(F, F_old, context.formulation->objective_rate, kinematics_planar_path);
           terms[audit_stress_work] =
             (mean_stress(true_kin, sigma_n, r.stress) * true_kin.strain_increment) * dv_half;
@@ -116,10 +132,10 @@ namespace anvil
                                           CopyData &copy) const
     {
       const Formulation<dim> &formulation = *context.formulation;
-      const FEValues<dim>    &fe_values   = scratch.fe_values;
+      const ReferenceCellValues    &ref         = scratch.cell;
       const bool              heat        = context.has_temperature_field();
       if (formulation.f_bar)
-        f_bar.evaluate_centre(cell, scratch);
+        f_bar.evaluate_centre(scratch);
       auto cell_points = (*context.points)[cell];
 
       const MaterialModel &model = *context.materials->at(cell->material_id());
@@ -128,10 +144,9 @@ namespace anvil
       for (unsigned int q = 0; q < scratch.points.size(); ++q)
         {
           PointValues       &p     = scratch.points[q];
-          const double       R     = formulation.radius(fe_values, q);
-          const Tensor<2, 3> F     = formulation.deformation_gradient(fe_values, q, scratch.local_u, R);
-          const Tensor<2, 3> F_old =
-            formulation.deformation_gradient(fe_values, q, scratch.local_u_old, R);
+          const double       R     = formulation.radius(ref, q);
+          const Tensor<2, 3> F     = formulation.deformation_gradient(ref, q, scratch.local_u, R);
+          const Tensor<2, 3> F_old = formulation.deformation_gradient(ref, q, scratch.local_u_old, R);
           const double J = determinant(F);
           if (!(J > 0) || !(determinant(0.5 * (F + F_old)) > 0) || !(scratch.J0 > 0))
             {
@@ -176,7 +191,7 @@ namespace anvil
           p.F_mat     = F_mat;
           p.point     = &point;
           p.adiabatic = increment.adiabatic;
-          p.w         = formulation.weight(fe_values, q, R);
+          p.w         = formulation.weight(ref, q, R);
           // Heat sources χẆirr + Ẇthel (eq. 20–22) and the temperature the point ends at.
           (*context.heat_sources)(cell, q) =
             response.plastic_dissipation_rate + response.thermoelastic_heating_rate;
@@ -185,7 +200,7 @@ namespace anvil
             (*context.material_temperature)(cell, q) =
               increment.temperature +
               (increment.adiabatic ? response.adiabatic_temperature_increment : 0.);
-          audit_terms(cell, model, j2, q, F, F_old, p, increment, copy.audit[q]);
+          audit_terms(cell, model, j2, q, F, F_old, p, increment, scratch.audit_kin, copy.audit[q]);
           copy.max_plastic_increment =
             std::max(copy.max_plastic_increment,
                      response.equivalent_plastic_strain - point.committed_equivalent_plastic_strain());

@@ -29,7 +29,7 @@ namespace anvil
           for (unsigned int a = 0; a < n_dofs; ++a)
             {
               ShapeGradient &g = scratch.G[a];
-              formulation.shape_gradient(scratch.fe_values, a, q, p.R, g);
+              formulation.shape_gradient(scratch.cell, a, q, p.R, g);
               double f = 0;
               for (unsigned int e = 0; e < g.n; ++e)
                 {
@@ -72,12 +72,16 @@ namespace anvil
             ds = f_bar.stress_derivative(dsigma[d], p.beta, F_inv[L][k], dsigma_Fbar);
           if (p.adiabatic) // ΔT_ad ∝ J: δ ln J = tr(δF F⁻¹) of the true F
             ds += F_inv[L][k] * p.response.volume_ratio_sensitivity;
+          // ds as a full matrix: SymmetricTensor's (i, m) look-up is the inner loop's cost.
+          const double dsm[3][3] = {{ds[0][0], ds[0][1], ds[0][2]},
+                                    {ds[0][1], ds[1][1], ds[1][2]},
+                                    {ds[0][2], ds[1][2], ds[2][2]}};
           for (unsigned int c = 0; c < n_dir; ++c)
             {
               const unsigned int i = directions.kl[c].first, J_ = directions.kl[c].second;
               double             ds_FiT = 0;
               for (unsigned int m = 0; m < 3; ++m)
-                ds_FiT += ds[i][m] * F_inv_T[m][J_];
+                ds_FiT += dsm[i][m] * F_inv_T[m][J_];
               // δP = J [tr(δF F⁻¹) σF⁻ᵀ + δσ F⁻ᵀ − σF⁻ᵀ δFᵀ F⁻ᵀ]
               A[c][d] = J * (F_inv[L][k] * sigma_FiT[i][J_] + ds_FiT -
                              sigma_FiT[i][L] * F_inv_T[k][J_]);
@@ -86,27 +90,71 @@ namespace anvil
       if (f_bar_on)
         f_bar.centre_coupling(J, F_inv_T, dsigma_Fbar, scratch.T0);
 
+      // AG_b = (A : G_b (+ T0 tr_b)) w and K_ab += G_a : AG_b. G_a has 2 or 3
+      // entries (3: the hoop term); the sums run in the order of the entries,
+      // as the general loop (last branch) does.
       for (unsigned int b = 0; b < n_dofs; ++b)
         {
-          auto &ag = scratch.AG[b];
+          const ShapeGradient &g  = G[b];
+          auto                &ag = scratch.AG[b];
+          const double         tr = f_bar_on ? scratch.center_trace[b] : 0.;
           for (unsigned int c = 0; c < n_dir; ++c)
             {
-              double s = 0;
-              for (unsigned int e = 0; e < G[b].n; ++e)
-                s += A[c][G[b].c[e]] * G[b].v[e];
+              const auto &Ac = A[c];
+              double      s  = 0;
+              if (g.n == 2)
+                {
+                  s += Ac[g.c[0]] * g.v[0];
+                  s += Ac[g.c[1]] * g.v[1];
+                }
+              else
+                for (unsigned int e = 0; e < g.n; ++e)
+                  s += Ac[g.c[e]] * g.v[e];
               if (f_bar_on)
-                s += scratch.T0[c] * scratch.center_trace[b];
+                s += scratch.T0[c] * tr;
               ag[c] = s * w;
             }
         }
       for (unsigned int a = 0; a < n_dofs; ++a)
-        for (unsigned int b = 0; b < n_dofs; ++b)
-          {
-            double s = 0;
-            for (unsigned int e = 0; e < G[a].n; ++e)
-              s += G[a].v[e] * scratch.AG[b][G[a].c[e]];
-            copy.matrix(a, b) += s;
-          }
+        {
+          const ShapeGradient &g   = G[a];
+          double              *row = &copy.matrix(a, 0);
+          if (g.n == 2)
+            {
+              const int    c0 = g.c[0], c1 = g.c[1];
+              const double v0 = g.v[0], v1 = g.v[1];
+              for (unsigned int b = 0; b < n_dofs; ++b)
+                {
+                  const auto &ag = scratch.AG[b];
+                  double      s  = 0;
+                  s += v0 * ag[c0];
+                  s += v1 * ag[c1];
+                  row[b] += s;
+                }
+            }
+          else if (g.n == 3)
+            {
+              const int    c0 = g.c[0], c1 = g.c[1], c2 = g.c[2];
+              const double v0 = g.v[0], v1 = g.v[1], v2 = g.v[2];
+              for (unsigned int b = 0; b < n_dofs; ++b)
+                {
+                  const auto &ag = scratch.AG[b];
+                  double      s  = 0;
+                  s += v0 * ag[c0];
+                  s += v1 * ag[c1];
+                  s += v2 * ag[c2];
+                  row[b] += s;
+                }
+            }
+          else
+            for (unsigned int b = 0; b < n_dofs; ++b)
+              {
+                double s = 0;
+                for (unsigned int e = 0; e < g.n; ++e)
+                  s += g.v[e] * scratch.AG[b][g.c[e]];
+                row[b] += s;
+              }
+        }
     }
 
     ANVIL_INSTANTIATE_CLASS(StressDivergence)

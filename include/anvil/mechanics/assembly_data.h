@@ -14,6 +14,7 @@
 #include <anvil/material/material_point.h>
 #include <anvil/mechanics/boundary_conditions.h>
 #include <anvil/mechanics/element_formulation.h>
+#include <anvil/mechanics/reference_values.h>
 #include <anvil/material/kinematics.h>
 
 #include <array>
@@ -107,9 +108,21 @@ namespace anvil
       ScratchData(const ScratchData &other);
 
       const dealii::UpdateFlags cell_flags;
-      dealii::FEValues<dim>     fe_values;
-      dealii::FEValues<dim>     fe_center;      // the cell centre (F-bar)
+      dealii::FEValues<dim>     fe_values;      // without ReferenceValues only
+      dealii::FEValues<dim>     fe_center;      // the cell centre (F-bar), likewise
       dealii::FEFaceValues<dim> fe_face_values; // follower pressure
+
+      /// The cell's shape functions, JxW and radii (what the kernels read):
+      /// ReferenceValues' entry, or fe_values copied into `own_values`.
+      ReferenceCellValues       cell;
+      std::vector<double> own_values, own_radii;
+      /// Points cell at the values of @p c: from @p reference if not null,
+      /// else by FEValues (fe_center too if @p centre).
+      void reinit(const typename dealii::Triangulation<dim>::active_cell_iterator &c,
+                  const ReferenceValues<dim> *reference,
+                  const std::vector<unsigned int> &component,
+                  bool                             centre,
+                  bool                             with_radius);
 
       /// Dof values of the cell: u_{n+1}, u_n; dynamics v_n, a_n and a_{n+1}.
       std::vector<double> local_u, local_u_old, local_v_old, local_a_old, local_a;
@@ -122,6 +135,7 @@ namespace anvil
       std::vector<double>  center_trace;
 
       std::vector<PointValues> points;
+      IncrementalKinematics    audit_kin; // the energy audit's true kinematics (F-bar)
 
       // Stress divergence: G_a, δσ per direction, A = ∂P_c/∂F_d, T0 (F-bar), A : G_b.
       std::vector<ShapeGradient>                  G;
@@ -131,6 +145,7 @@ namespace anvil
       std::vector<std::array<double, 9>>          AG;
 
       dealii::FullMatrix<double>          cell_mass; // inertia
+      std::vector<double>                 node_mass; // inertia: per node pair
       std::vector<dealii::Tensor<2, dim>> face_grad_u;
       std::vector<dealii::Tensor<1, dim>> face_u;
       std::vector<dealii::Tensor<1, dim>> face_d_nda; // follower pressure: δ(n da) per column

@@ -45,7 +45,7 @@ namespace anvil
         : formulation(formulation)
       {}
       /// J₀ at t_n+1 and t_n, F₀⁻¹ and tr(F₀⁻¹ ∂F₀/∂u_a) at the cell centre.
-      void evaluate_centre(const CellIterator<dim> &cell, ScratchData<dim> &scratch) const;
+      void evaluate_centre(ScratchData<dim> &scratch) const;
       /// β = (J₀/J)^α and F̄ (returned), with F̄_n of the old configuration in @p F_mat_old.
       dealii::Tensor<2, 3> material_gradient(const ScratchData<dim>     &scratch,
                                              const dealii::Tensor<2, 3> &F,
@@ -94,7 +94,8 @@ namespace anvil
       bool update(const CellIterator<dim> &cell, ScratchData<dim> &scratch, CopyData &copy) const;
 
     private:
-      /// The energy audit's terms of point @p q over the step (AuditTerm), after its update.
+      /// The energy audit's terms of point @p q over the step (AuditTerm), after its update
+      /// (@p true_kin: work space for the true F's kinematics with F-bar).
       /// (@p j2: @p model if it is a J2Model, for its temperature-dependent moduli.)
       void audit_terms(const CellIterator<dim>    &cell,
                        const MaterialModel        &model,
@@ -104,6 +105,7 @@ namespace anvil
                        const dealii::Tensor<2, 3> &F_old,
                        const PointValues          &p,
                        const MaterialIncrement    &increment,
+                       IncrementalKinematics      &true_kin,
                        std::array<double, n_audit_terms> &terms) const;
 
       const Context<dim> &context;

@@ -3,6 +3,9 @@
 #include <deal.II/fe/mapping_q.h>
 #include <deal.II/grid/tria.h>
 
+#include <anvil/mechanics/reference_values.h>
+
+#include <memory>
 #include <vector>
 
 namespace anvil
@@ -42,6 +45,19 @@ namespace anvil
 
       std::unique_ptr<dealii::Mapping<dim>> clone() const override;
 
+      /**
+       * The reference values of the loop's cells under this mapping
+       * (ReferenceValues), computed at the first call after reinit() and kept
+       * while the element, quadrature and radius request stay the same; null
+       * when they would take more than @p max_bytes (the assembly then runs
+       * FEValues per cell). Not thread-safe: call it before the loop.
+       */
+      const ReferenceValues<dim> *reference_values(const dealii::FiniteElement<dim> &fe,
+                                                   const dealii::Quadrature<dim>    &quadrature,
+                                                   const std::vector<unsigned int>  &component,
+                                                   bool                              with_radius,
+                                                   std::size_t max_bytes = 64u << 20) const;
+
     protected:
       dealii::CellSimilarity::Similarity
       fill_fe_values(const typename dealii::Triangulation<dim>::cell_iterator &cell,
@@ -54,6 +70,11 @@ namespace anvil
     private:
       /// Per active cell index: the first cell of its run of translations.
       std::vector<typename dealii::Triangulation<dim>::cell_iterator> chain_start;
+      /// The loop's cells (reinit()) and their values, once computed.
+      std::vector<typename dealii::Triangulation<dim>::cell_iterator> loop_cells;
+      unsigned int                                                     n_active_cells = 0;
+      mutable std::shared_ptr<ReferenceValues<dim>>                    values;
+      mutable bool                                                     values_refused = false;
     };
   } // namespace MechanicsAssembly
 } // namespace anvil

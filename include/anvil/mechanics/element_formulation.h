@@ -5,6 +5,7 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <anvil/material/kinematics.h>
+#include <anvil/mechanics/reference_values.h>
 
 #include <vector>
 
@@ -50,8 +51,10 @@ namespace anvil
       const double                    alpha;
       const TangentDirections         directions;
       const unsigned int              n_dofs;
-      /// Vector component of each shape function.
-      std::vector<unsigned int>       component;
+      /// Vector component of each shape function, and its node (the scalar
+      /// shape function it carries; n_nodes of them).
+      std::vector<unsigned int>       component, node;
+      unsigned int                    n_nodes = 0;
       /// Index of the direction (k, L) in `directions`, −1 if not used.
       int                             where[3][3];
 
@@ -59,11 +62,21 @@ namespace anvil
       dealii::Tensor<2, 3> deformation_gradient(const dealii::Tensor<2, dim> &grad_u,
                                                 double                        radial_displacement,
                                                 double                        radius) const;
-      /// F at point @p q of @p v from the cell's dof values (R: radius for the hoop term).
-      dealii::Tensor<2, 3> deformation_gradient(const dealii::FEValues<dim> &v,
-                                                unsigned int                 q,
-                                                const std::vector<double>   &values,
-                                                double                       radius) const;
+      /// F from the cell's dof values @p values, with @p grad ([a][d]) and
+      /// @p value ([a]) the shape functions at one point (R: radius for the hoop term).
+      dealii::Tensor<2, 3> deformation_gradient(const double              *grad,
+                                                const double              *value,
+                                                const std::vector<double> &values,
+                                                double                     radius) const;
+      /// F at point @p q of @p cell.
+      dealii::Tensor<2, 3> deformation_gradient(const ReferenceCellValues       &cell,
+                                                const unsigned int         q,
+                                                const std::vector<double> &values,
+                                                const double               radius) const
+      {
+        return deformation_gradient(cell.grad + q * n_dofs * dim, cell.value + q * n_dofs, values,
+                                    radius);
+      }
       /// det of the active block of F.
       double active_det(const dealii::Tensor<2, 3> &F) const
       {
@@ -77,22 +90,22 @@ namespace anvil
           Fb[2][2] = 1;
         return Fb;
       }
-      /// Radius of point @p q for the hoop term (1 when not axisymmetric).
-      double radius(const dealii::FEValues<dim> &v, const unsigned int q) const
+      /// Radius of point @p q (n_q: the centre) for the hoop term (1 when not axisymmetric).
+      double radius(const ReferenceCellValues &cell, const unsigned int q) const
       {
-        return axisymmetric ? v.quadrature_point(q)[0] : 1.;
+        return axisymmetric ? cell.x[q] : 1.;
       }
       /// Integration weight of point @p q: per full ring 2πR in the axisymmetric case.
-      double weight(const dealii::FEValues<dim> &v, const unsigned int q, const double R) const
+      double weight(const ReferenceCellValues &cell, const unsigned int q, const double R) const
       {
-        return v.JxW(q) * (axisymmetric ? 2 * dealii::numbers::PI * R : 1.);
+        return cell.JxW[q] * (axisymmetric ? 2 * dealii::numbers::PI * R : 1.);
       }
       /// G_a = ∂F/∂u_a of shape function @p a at point @p q (hoop entry N_a/R included).
-      void shape_gradient(const dealii::FEValues<dim> &v,
-                          unsigned int                 a,
-                          unsigned int                 q,
-                          double                       R,
-                          ShapeGradient               &g) const;
+      void shape_gradient(const ReferenceCellValues &cell,
+                          unsigned int         a,
+                          unsigned int         q,
+                          double               R,
+                          ShapeGradient       &g) const;
     };
   } // namespace MechanicsAssembly
 } // namespace anvil
