@@ -210,12 +210,6 @@ namespace anvil
         // would precede anvil's one line on a failed heat step, which names
         // the cause (a NaN boundary value, the step it cut back): silenced.
         ARKStepSetErrFile(mem, nullptr);
-        // An exact Newton step of a linear problem leaves no residual: the
-        // stage's f(z) is (M z_cor − s)/γ to round-off and needs no
-        // evaluation of its own (3 of the 7.5 right-hand sides per step of a
-        // 3rd-order ESDIRK). Not after GMRES: its residual would enter f.
-        if (settings.linear && settings.exact_newton_solves)
-          ARKStepSetDeduceImplicitRhs(mem, SUNTRUE);
         ARKStepSetPostprocessStepFn(mem, record_step);
         ARKStepSetMaxNumSteps(mem, settings.max_internal_steps);
         ARKStepSetInterpolantType(mem, ARK_INTERP_LAGRANGE);

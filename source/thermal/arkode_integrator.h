@@ -49,10 +49,6 @@ namespace anvil
       /// With linear: J = ∂f/∂y does not depend on t, so ARKode sets up the
       /// Newton matrix only when γ changes, not at every stage.
       bool         jacobian_constant        = false;
-      /// With linear: every Newton system is solved exactly (a direct solve
-      /// of ARKode's own M − γJ), so a stage's f(z) follows from its Newton
-      /// step, (M z_cor − s)/γ, and is not evaluated (ARKStepSetDeduceImplicitRhs).
-      bool         exact_newton_solves      = false;
       double       relative_tolerance       = 1e-6;
       double       absolute_tolerance       = 1e-6;
       double       fixed_step_size          = 0; // 0: adaptive

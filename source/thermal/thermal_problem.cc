@@ -363,10 +363,6 @@ namespace anvil
     settings.initial_step_size        = last_internal_step;
     settings.linear                   = linear;
     settings.jacobian_constant        = !convection_varies;
-    // setup_newton factorises M + γA for every γ of a linear problem when it
-    // is direct, with the exchange's couplings in it: ARKode's own matrix.
-    settings.exact_newton_solves =
-      linear && use_direct && (!exchange.add_jacobian || exchange.add_matrix);
     Ode        ode(*this);
     const auto s = thermal::integrate(ode, y, time_old, time_new, settings);
 

@@ -52,14 +52,8 @@ namespace anvil
   void ThermalProblem<dim>::setup_newton(const double gamma)
   {
     // M − γ'J with γ' within 20 % of γ preconditions ARKode's GMRES on M − γJ
-    // well (a few iterations): keep the factorisation. Not for a linear
-    // problem with a direct solver: a factorisation per γ (ARKode sets up only
-    // when γ changes) makes every Newton step one exact solve, whose stage
-    // derivatives ARKode then deduces (arkode_integrator.cc). On two_blocks
-    // that is 160 instead of 81 numeric factorisations of 462 unknowns, and
-    // 462 instead of 924 KLU solves (no GMRES).
-    const double keep = linear && use_direct ? 0. : 0.2;
-    if (current_gamma > 0 && (gamma == current_gamma || std::abs(gamma / current_gamma - 1) < keep))
+    // well (a few iterations): keep the factorisation.
+    if (current_gamma > 0 && std::abs(gamma / current_gamma - 1) < 0.2)
       return;
     TimerOutput::Scope t(timer, "Heat: Newton matrix");
     if (exchange.add_matrix)
