@@ -181,6 +181,12 @@ namespace anvil
       ode.solve_mass = [&](SUNDIALS::SundialsOperator<Vector> &, SUNDIALS::SundialsPreconditioner<Vector> &,
                            Vector &x, const Vector &b, double tol) {
         return guarded(message, [&] {
+          // An explicit first stage (ESDIRK) asks for M⁻¹ 0 at every step.
+          if (b.linfty_norm() == 0)
+            {
+              x = 0;
+              return 0;
+            }
           ++stats.mass_solves;
           return system.solve_mass(x, b, tol);
         });

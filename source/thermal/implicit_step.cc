@@ -5,6 +5,8 @@
 #include <anvil/core/instantiate.h>
 #include <anvil/thermal/thermal_problem.h>
 
+#include <limits>
+
 namespace anvil
 {
   using namespace dealii;
@@ -56,8 +58,9 @@ namespace anvil
   {
     Vector y(T_owned);
     hanging.distribute(y);
-    solution            = y;
-    temperature_ghosted = solution;
+    solution              = y;
+    temperature_ghosted   = solution;
+    solution_heat_content = std::numeric_limits<double>::quiet_NaN();
   }
 
   template <int dim>

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <iomanip>
 #include <sstream>
 
@@ -165,6 +166,7 @@ namespace anvil
     last_steady.converged = stats.converged;
     solution              = T;
     temperature_ghosted   = solution;
+    solution_heat_content = std::numeric_limits<double>::quiet_NaN();
     return stats;
   }
 

@@ -109,7 +109,8 @@ namespace anvil
     mass_jacobi.initialize(mass_matrix);
     if (thermal::mass_by_klu(use_direct, parameters.lumped_mass, dof_handler.n_dofs()))
       mass_direct->factorize(mass_matrix);
-    current_gamma = -1;
+    current_gamma           = -1;
+    mass_in_pattern_current = false;
   }
 
   template <int dim>
@@ -471,6 +472,7 @@ namespace anvil
   {
     assemble_mass();
     operators_current = true;
+    update_exchange_pattern();
     assemble(t, T, nullptr, &tangent_matrix);
     tangent_current = true;
     sources_current = false;

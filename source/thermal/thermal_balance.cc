@@ -189,18 +189,33 @@ namespace anvil
     const typename Triangulation<dim>::active_cell_iterator &cell, const Quadrature<dim> &q,
     std::vector<double> &T_new, std::vector<double> &T_old) const
   {
+    const typename DoFHandler<dim>::active_cell_iterator dof_cell(&triangulation, cell->level(),
+                                                                  cell->index(), &dof_handler);
     if (!point_values || !(q == *point_quadrature))
       {
         point_quadrature = std::make_unique<Quadrature<dim>>(q);
         point_values = std::make_unique<FEValues<dim>>(reference_mapping, fe, *point_quadrature, update_values);
+        point_values->reinit(dof_cell);
       }
-    const typename DoFHandler<dim>::active_cell_iterator dof_cell(&triangulation, cell->level(),
-                                                                  cell->index(), &dof_handler);
-    point_values->reinit(dof_cell);
-    T_new.resize(q.size());
-    T_old.resize(q.size());
-    point_values->get_function_values(temperature_ghosted, T_new);
-    point_values->get_function_values(old_temperature_ghosted, T_old);
+    // FE_Q's values at the points do not depend on the cell (nor on the
+    // mapping): Σ_j T_j φ_j(x_q) from the first cell's table, summed as
+    // FEValues::get_function_values does (same bits), without its reinit.
+    const unsigned int n_dofs = fe.n_dofs_per_cell();
+    std::vector<types::global_dof_index> dofs(n_dofs);
+    dof_cell->get_dof_indices(dofs);
+    auto values = [&](const Vector &T, std::vector<double> &out) {
+      out.assign(q.size(), 0.);
+      for (unsigned int j = 0; j < n_dofs; ++j)
+        {
+          const double value = T(dofs[j]);
+          if (value == 0)
+            continue;
+          for (unsigned int k = 0; k < q.size(); ++k)
+            out[k] += value * point_values->shape_value(j, k);
+        }
+    };
+    values(temperature_ghosted, T_new);
+    values(old_temperature_ghosted, T_old);
   }
 
   ANVIL_INSTANTIATE_CLASS(ThermalProblem)

@@ -385,9 +385,18 @@ namespace anvil
     unsigned int solve_newton(Vector &x, const Vector &b, double tolerance);
     unsigned int solve_mass(Vector &x, const Vector &b, double tolerance);
     void   setup_newton(double gamma);
-    /// The cells' pattern (hanging and Temperature constraints kept), with
-    /// every pair of dofs of each of @p groups in the rows owned here.
-    dealii::DynamicSparsityPattern sparsity(const std::vector<std::vector<dealii::types::global_dof_index>> &groups) const;
+    /// The contact exchange's couplings into the tangent's, the Newton
+    /// matrix's and mass_in_pattern's pattern (when new ones appeared).
+    void   update_exchange_pattern();
+    /// The cells' pattern (hanging and Temperature constraints kept).
+    dealii::DynamicSparsityPattern sparsity() const;
+    /// cell_pattern with, in the rows owned here, every pair of dofs of each
+    /// of @p groups and of the masters' cell neighbours (the faces a sliding
+    /// slave reaches next: fewer rebuilds of the pattern).
+    dealii::DynamicSparsityPattern
+    exchange_sparsity(const std::vector<std::vector<dealii::types::global_dof_index>> &groups) const;
+    /// Whether exchange_pattern has every pair of each of @p groups (all processes).
+    bool covers(const std::vector<std::vector<dealii::types::global_dof_index>> &groups) const;
     /// Boundary, source and Dirichlet heat of the step just solved (trapezoidal in time).
     void   step_balance(double time_old, double time_new);
     /// Steady state: f(T, t) with the Temperature and hanging rows zero (|f| returned).
@@ -422,6 +431,10 @@ namespace anvil
     Exchange   exchange;
 
     dealii::TrilinosWrappers::SparseMatrix mass_matrix, tangent_matrix, newton_matrix;
+    /// M (or its lumped diagonal) in the Newton matrix's pattern when the
+    /// exchange extends it (mass_matrix keeps the cells' pattern for its solves).
+    dealii::TrilinosWrappers::SparseMatrix mass_in_pattern;
+    bool mass_in_pattern_current = false;
     Vector lumped_mass, mass_diagonal;
     std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG>    newton_amg;
     /// KLU of M + γA, its symbolic analysis kept while the pattern is (core/klu_factorization.h).
@@ -429,8 +442,9 @@ namespace anvil
     /// KLU of M (reference configuration: factorised once per assemble_mass)
     /// for ARKode's mass solves where the Newton matrix is direct too.
     std::unique_ptr<KluFactorization>                            mass_direct;
-    /// newton_matrix has the exchange's couplings of its last couplings().
+    /// tangent_matrix and newton_matrix have the exchange's couplings of its last couplings().
     bool exchange_pattern_current = false;
+    dealii::DynamicSparsityPattern cell_pattern, exchange_pattern; // sparsity(), exchange_sparsity()
     dealii::TrilinosWrappers::PreconditionJacobi                  mass_jacobi;
     bool   operators_current = false, use_direct = true, linear = true;
     bool   tangent_current = false, has_convection = false; // tangent assembled for this configuration
@@ -457,6 +471,9 @@ namespace anvil
     Vector temperature_ghosted, old_temperature_ghosted; // ghosted
     mutable Vector scratch_ghosted;
     double committed_time = 0;
+    /// heat_content() of solution and of old_solution where known (NaN: not
+    /// computed since they changed): one cell loop per step, not two.
+    double solution_heat_content = 0, old_heat_content = 0;
 
     std::map<dealii::types::boundary_id, double> step_heat_in, total_heat_in;
     double step_dirichlet_heat_in = 0, step_source = 0, total_source = 0;
