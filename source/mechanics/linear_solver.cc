@@ -3,6 +3,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/vector_memory.h>
 #include <deal.II/lac/trilinos_precondition.h>
 
 #include <anvil/core/instantiate.h>
@@ -128,7 +129,20 @@ namespace anvil
     // tolerance in N). Restart 30: each Krylov vector costs 8 B per DoF.
     SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
       control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(30, true));
-    gmres.solve(K, x, b, amg);
+    // deal.II's vector pool keeps the Krylov basis (~32 vectors, 256 B per
+    // DoF) after the solve, and the next AMG set-up, the run's memory peak,
+    // would sit on top of it: give it back (a few page faults per solve).
+    const auto release = [] { GrowingVectorMemory<TrilinosWrappers::MPI::Vector>::release_unused_memory(); };
+    try
+      {
+        gmres.solve(K, x, b, amg);
+      }
+    catch (...)
+      {
+        release();
+        throw;
+      }
+    release();
     return control.last_step();
   }
 
