@@ -69,14 +69,10 @@ namespace anvil
         // The displacement block as the mechanics' own solve preconditions
         // it (doc/linear_solver.md): rigid-body modes, nodes aggregated.
         IterativeSolverSettings settings_u;
-        std::vector<std::vector<double>> modes;
-        if (s.u_modes)
-          {
-            modes = s.u_modes->modes;
-            if (s.u_modes->node_blocks)
-              settings_u.components = s.u_modes->components;
-          }
-        p.amg_u = build_amg(s.K_uu, modes, settings_u);
+        if (s.u_modes && s.u_modes->node_blocks)
+          settings_u.components = s.u_modes->components;
+        p.amg_u = build_amg(s.K_uu, s.u_modes ? s.u_modes->modes : std::vector<std::vector<double>>(),
+                            settings_u);
         TrilinosWrappers::PreconditionAMG::AdditionalData data_T;
         data_T.elliptic        = true;
         data_T.smoother_sweeps = 2;
