@@ -20,6 +20,10 @@ Cases:
 Usage: solver_scaling.py BUILD_DIR OUT_DIR [--small] [--large] [--cases 2d,3d,strip]
        [--solvers iterative,direct] [--sizes '2d:64,128;3d:10'] [--np 2] [--set ENTRY=VALUE ...]
 
+The environment reaches every run: ANVIL_ML_PARAMETERS sets ML's parameters
+(e.g. 'smoother: type (level 0)=IFPACK; ...') and ANVIL_ISOCHORIC_MODES=1 adds
+the isochoric linear fields to the near-null space (doc/linear_solver.md).
+
 --set passes an entry to every run (e.g. 'Mechanics/Linear solver/AMG rebuild
 growth=0' for the hierarchy built at every solve, as before session 8).
 """

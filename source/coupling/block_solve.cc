@@ -23,7 +23,8 @@ namespace anvil
         , dst_T(T_layout)
       {}
       const TwoFieldSystem             &s;
-      TrilinosWrappers::PreconditionAMG amg_u, amg_T;
+      std::unique_ptr<TrilinosWrappers::PreconditionAMG> amg_u;
+      TrilinosWrappers::PreconditionAMG                  amg_T;
       mutable Vector                    src_u, src_T, dst_u, dst_T;
       void                              vmult(Vector &dst, const Vector &src) const
       {
@@ -33,7 +34,7 @@ namespace anvil
           src_T(i) = src(s.n_u + i);
         src_u.compress(VectorOperation::insert);
         src_T.compress(VectorOperation::insert);
-        amg_u.vmult(dst_u, src_u);
+        amg_u->vmult(dst_u, src_u);
         amg_T.vmult(dst_T, src_T);
         for (const auto i : s.owned_u)
           dst(i) = dst_u(i);
@@ -65,11 +66,16 @@ namespace anvil
     else
       {
         BlockAMG p(s, b_u, b_T);
-        TrilinosWrappers::PreconditionAMG::AdditionalData data_u, data_T;
-        data_u.elliptic = data_T.elliptic = true;
-        data_u.smoother_sweeps = data_T.smoother_sweeps = 2;
-        data_u.aggregation_threshold                    = 0.02;
-        p.amg_u.initialize(s.K_uu, data_u);
+        // The displacement block as the mechanics' own solve preconditions
+        // it (doc/linear_solver.md): rigid-body modes, nodes aggregated.
+        IterativeSolverSettings settings_u;
+        if (s.u_modes && s.u_modes->node_blocks)
+          settings_u.components = s.u_modes->components;
+        p.amg_u = build_amg(s.K_uu, s.u_modes ? s.u_modes->modes : std::vector<std::vector<double>>(),
+                            settings_u);
+        TrilinosWrappers::PreconditionAMG::AdditionalData data_T;
+        data_T.elliptic        = true;
+        data_T.smoother_sweeps = 2;
         p.amg_T.initialize(s.K_TT, data_T);
         SolverControl       control(1000, 1e-10 * b.l2_norm());
         SolverGMRES<Vector> gmres(control, SolverGMRES<Vector>::AdditionalData(50));

@@ -74,8 +74,12 @@ namespace anvil
   {
     const bool direct =
       linear_solver == "direct" || (linear_solver == "automatic" && n_u + n_T <= direct_limit);
-    const TwoFieldSystem system{jacobian, this->problem->mechanics()->get_system_matrix(),
-                                heat_block, owned_u, owned_T, owned, n_u};
+    const auto          &mech  = *this->problem->mechanics();
+    const RigidBodyModes modes = direct ? RigidBodyModes{} :
+                                          rigid_body_modes(mech.get_mapping(), mech.get_dof_handler(),
+                                                           &mech.displacement());
+    const TwoFieldSystem system{jacobian, mech.get_system_matrix(), heat_block, owned_u,
+                                owned_T,  owned,                    n_u,        &modes};
     const unsigned int   iterations = solve_two_field(system, b_u, b_T, du, dT, direct);
     this->problem->mechanics()->update_constraints().distribute(du);
     this->problem->heat()->get_constraints().distribute(dT);

@@ -3,11 +3,14 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/lac/solver_control.h>
 #include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/vector_memory.h>
 #include <deal.II/lac/trilinos_precondition.h>
 
 #include <anvil/core/instantiate.h>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <sstream>
 #include <anvil/mechanics/linear_solver.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
@@ -19,6 +22,58 @@ DEAL_II_ENABLE_EXTRA_DIAGNOSTICS
 namespace anvil
 {
   using namespace dealii;
+
+  namespace
+  {
+    std::string trimmed(const std::string &s)
+    {
+      const auto a = s.find_first_not_of(" \t"), b = s.find_last_not_of(" \t");
+      return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+    }
+  } // namespace
+
+  void apply_ml_overrides(Teuchos::ParameterList &list, const std::string &overrides)
+  {
+    std::istringstream entries(overrides);
+    for (std::string entry; std::getline(entries, entry, ';');)
+      {
+        entry = trimmed(entry);
+        if (entry.empty())
+          continue;
+        const auto eq = entry.find('=');
+        AssertThrow(eq != std::string::npos,
+                    ExcMessage("ML parameter override without '=': " + entry));
+        std::string       name  = trimmed(entry.substr(0, eq));
+        const std::string value = trimmed(entry.substr(eq + 1));
+        // "a/b/name": name in sublist b of sublist a (ML's "smoother: ifpack list").
+        Teuchos::ParameterList *target = &list;
+        for (auto slash = name.find('/'); slash != std::string::npos; slash = name.find('/'))
+          {
+            target = &target->sublist(trimmed(name.substr(0, slash)));
+            name   = name.substr(slash + 1);
+          }
+        // ML names contain ':' themselves: the type is a last ":int", ":double", ":bool".
+        std::string type  = "string";
+        const auto  colon = name.rfind(':');
+        if (colon != std::string::npos)
+          {
+            const std::string t = trimmed(name.substr(colon + 1));
+            if (t == "int" || t == "double" || t == "bool")
+              {
+                type = t;
+                name = trimmed(name.substr(0, colon));
+              }
+          }
+        if (type == "int")
+          target->set(name, std::stoi(value));
+        else if (type == "double")
+          target->set(name, std::stod(value));
+        else if (type == "bool")
+          target->set(name, value == "true" || value == "1");
+        else
+          target->set(name, value);
+      }
+  }
 
   std::unique_ptr<TrilinosWrappers::PreconditionAMG>
   build_amg(const TrilinosWrappers::SparseMatrix   &K,
@@ -54,6 +109,9 @@ namespace anvil
     // Aggregate nodes, not dofs: a node's components move together in
     // every mode, and splitting them would cut the modes apart.
     list.set("PDE equations", static_cast<int>(settings.components));
+    // Benchmarks try ML's other settings without rebuilding (doc/linear_solver.md).
+    if (const char *overrides = std::getenv("ANVIL_ML_PARAMETERS"))
+      apply_ml_overrides(list, overrides);
     auto amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
     amg->initialize(K, list);
     return amg;
@@ -71,7 +129,20 @@ namespace anvil
     // tolerance in N). Restart 30: each Krylov vector costs 8 B per DoF.
     SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
       control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(30, true));
-    gmres.solve(K, x, b, amg);
+    // deal.II's vector pool keeps the Krylov basis (~32 vectors, 256 B per
+    // DoF) after the solve, and the next AMG set-up, the run's memory peak,
+    // would sit on top of it: give it back (a few page faults per solve).
+    const auto release = [] { GrowingVectorMemory<TrilinosWrappers::MPI::Vector>::release_unused_memory(); };
+    try
+      {
+        gmres.solve(K, x, b, amg);
+      }
+    catch (...)
+      {
+        release();
+        throw;
+      }
+    release();
     return control.last_step();
   }
 

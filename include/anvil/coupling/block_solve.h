@@ -7,6 +7,8 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <anvil/mechanics/linear_solver.h>
+
 namespace anvil
 {
   struct TwoFieldSystem
@@ -16,11 +18,15 @@ namespace anvil
     const dealii::TrilinosWrappers::SparseMatrix &K_TT;
     const dealii::IndexSet                       &owned_u, &owned_T, &owned;
     dealii::types::global_dof_index               n_u;
+    /// Near-null space of K_uu for its AMG (rigid_body_modes()); null: the
+    /// constant modes only, dof by dof.
+    const RigidBodyModes *u_modes = nullptr;
   };
 
   /**
    * Solve directly (Amesos KLU on the whole matrix) or by GMRES(50) to 10⁻¹⁰
-   * of |b|, left-preconditioned by one AMG per diagonal block. @p x_u, @p x_T
+   * of |b|, left-preconditioned by one AMG per diagonal block (K_uu's on
+   * system.u_modes, node by node, as the mechanics' own solve). @p x_u, @p x_T
    * take the field layouts of @p b_u, @p b_T. Returns the linear iterations
    * (1 for the direct solve); throws if the solver fails.
    */

@@ -11,6 +11,7 @@
 #include <deal.II/lac/trilinos_vector.h>
 
 #include <functional>
+#include <string>
 #include <memory>
 #include <vector>
 
@@ -38,6 +39,8 @@ namespace anvil
     /// Every node's dim dofs are consecutive rows (k dim + c): ML may
     /// aggregate nodes ("PDE equations" = dim) on every process.
     bool node_blocks = true;
+    /// dofs per node (dim).
+    unsigned int components = 1;
   };
   template <int dim>
   RigidBodyModes rigid_body_modes(const dealii::Mapping<dim>                  &mapping,
@@ -71,6 +74,15 @@ namespace anvil
     /// first solve's (0: a new hierarchy for every solve).
     double       rebuild_growth = 0;
   };
+
+  /**
+   * Set ML parameters from "name=value; name:int=3; name:double=0.1;
+   * sublist/name:bool=true" (a value is a string unless its name ends in
+   * :int, :double or :bool). build_amg() applies the environment variable
+   * ANVIL_ML_PARAMETERS after its own settings: the benchmarks' way to try
+   * ML's options without a rebuild (doc/linear_solver.md).
+   */
+  void apply_ml_overrides(Teuchos::ParameterList &list, const std::string &overrides);
 
   /// The smoothed-aggregation hierarchy of K on @p near_null_space
   /// (vectors over the locally owned rows of K).
