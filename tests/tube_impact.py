@@ -15,6 +15,12 @@ to a few ten percent; it must not be below it (the section must yield) and
 the base force right after impact must be capped near it (elastic impedance
 rho c v A = 54 kN is not reached: the section yields first).
 
+Newton's tolerances (the scene's 1e-3 on the residual, 1e-4 on the
+displacement correction) against a converged reference: the same run at
+1e-8 on both must march the same steps (the scene writes its sequence, so
+no Newton failure chooses it: no cut-back) and give the drive force within
+1e-3 of the largest (doc/studies/tube_newton.md).
+
 The full crush (3.27 ms) of the three cases: tests/tube_crush.py; np = 2 and a
 restart mid-crush: tests/tube_parallel.py (both `long`; doc/tube_impact.md).
 """
@@ -44,6 +50,23 @@ print("  first peak of the drive force %.2f kN at t = %.1f us (squash load %.2f 
 check(t[-1] >= end * (1 - 1e-9), "reached t = %g s" % end)
 check(squash <= force[k] <= 1.35 * squash,
       "first peak %.2f kN within [1, 1.35] x squash load %.2f kN" % (force[k], squash))
+# The scene's step sequence (Time/Breakpoints): 1.5e-5, four of 7.5e-6,
+# 1.125e-5, then 1.5e-5.
+written = [1.5e-5, 2.25e-5, 3e-5, 3.75e-5, 4.5e-5, 5.625e-5, 7.125e-5, 8.625e-5]
+check(s.get("cut_backs", -1) == 0 and all(abs(a - b) <= 1e-12 for a, b in zip(t[1:], written)),
+      "the written step sequence, no cut-back: %s us" % ", ".join("%.3f" % (1e6 * x) for x in t[1:len(written) + 1]))
+out8, s8, log8 = run("prm/tube_impact.prm", ["Physics/Coupling=mechanical only", "Time/End time=%g" % end,
+                                             "Output/Field interval=0", "Mechanics/Newton/Residual tolerance=1e-8",
+                                             "Mechanics/Newton/Displacement tolerance=1e-8"],
+                     name="tube_impact_peak_tight")
+r8 = read_csv(out8 + "/reactions.csv")
+force8 = [-f / 1000 for f in r8["top_Fy"]]
+same = len(r8["time"]) == len(t) and all(abs(a - b) <= 1e-12 for a, b in zip(r8["time"], t))
+dev = max(abs(a - b) for a, b in zip(force, force8)) / max(force8) if same else float("inf")
+print("  Newton iterations: scene %d, tolerances 1e-8 %d" % (s.get("newton_iterations", 0),
+                                                          s8.get("newton_iterations", 0)))
+check(same and dev <= 1e-3, "the scene's Newton tolerances: drive force within %.2g <= 1e-3 of the largest "
+      "against tolerances 1e-8 on the same steps" % dev)
 check(max(base) <= 1.35 * squash, "base force after impact %.2f kN capped near the squash load (impedance "
       "rho c v A = 54 kN not reached)" % max(base))
 finish()
