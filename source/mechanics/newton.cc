@@ -335,13 +335,8 @@ namespace anvil
     // Line search on the energy norm s(α) = δu · R(u + α δu) (Crisfield):
     // the residual norm itself grows in the first iterations of large
     // rotations although the step is good, so it is a poor merit function.
-    // A full step is kept unless |s(1)| > 0.1 |s(0)| or an element inverts;
-    // then α follows the secant root of s, within [0.1, 1], to |s(α)| <=
-    // 0.1 |s(0)|. The usual 0.8 (Crisfield) left the tube's fold hinges at
-    // α = 0.2–0.5 for several iterations each: 0.1 finds the root of s in
-    // a trial or two more and saves iterations (tube 1238 -> 1161, no scene
-    // worse; doc/studies/tube_newton.md).
-    constexpr double accept = 0.1;
+    // A full step is kept unless |s(1)| > 0.8 |s(0)| or an element inverts;
+    // then α follows the secant root of s, within [0.1, 1].
     // The full step is tried with the matrix: it is kept far more often than
     // not, and then the next iteration needs K and R at exactly this state.
     const TrilinosWrappers::MPI::Vector u_start = owned_solution;
@@ -369,7 +364,7 @@ namespace anvil
             alpha *= 0.5;
             continue;
           }
-        if (std::abs(s1) <= accept * std::abs(s0))
+        if (std::abs(s1) <= 0.8 * std::abs(s0))
           break;
         // Secant root of s between (0, s0) and (α, s1). If s has not changed
         // sign and grows in magnitude the root lies beyond α: keep α.
