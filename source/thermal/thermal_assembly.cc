@@ -356,11 +356,17 @@ namespace anvil
     if (rhs && !tangent && linear_residual(t, y, *rhs))
       return;
     TimerOutput::Scope scope(timer, rhs ? "Heat: residual" : "Heat: tangent");
-    {
-      Vector owned(y);
-      hanging.distribute(owned);
-      scratch_ghosted = owned;
-    }
+    // The tangent of a linear problem (k independent of T, no radiation) does
+    // not read T: no copy and ghost import of y, no values at the points
+    // (the faces' convection reads the last ghosted field and only the
+    // residual uses it). Every entry is the same number (cell_tangent).
+    const bool tangent_of_linear = linear && tangent && !rhs;
+    if (!tangent_of_linear)
+      {
+        Vector owned(y);
+        hanging.distribute(owned);
+        scratch_ghosted = owned;
+      }
     const Vector &T = scratch_ghosted;
 
     std::map<types::global_dof_index, double> g_dot;
@@ -392,8 +398,11 @@ namespace anvil
       if (coupling)
         s.fe_reference.reinit(cell);
       cell->get_dof_indices(c.dofs);
-      s.fe_values.get_function_values(T, s.T);
-      s.fe_values.get_function_gradients(T, s.grad_T);
+      if (!tangent_of_linear)
+        {
+          s.fe_values.get_function_values(T, s.T);
+          s.fe_values.get_function_gradients(T, s.grad_T);
+        }
       thermal::fill_weights<dim>(s.fe_values, axi, s.weight);
       c.matrix = 0;
       c.vector = 0;
