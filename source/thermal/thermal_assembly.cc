@@ -15,6 +15,8 @@
 #include <deal.II/grid/filtered_iterator.h>
 #include <deal.II/numerics/vector_tools.h>
 
+#include <Epetra_CrsMatrix.h>
+
 #include <anvil/core/instantiate.h>
 #include <anvil/thermal/assembly_data.h>
 #include <anvil/thermal/kernels.h>
@@ -432,6 +434,32 @@ namespace anvil
             thermal::boundary_face<dim>(s, cell, f, bc->second, &T, axi, tangent != nullptr, c);
           }
     };
+    // A cell without hanging dofs whose rows are all owned adds its matrix by
+    // local row and column numbers, looked up once per dof (Epetra's
+    // SumIntoGlobalValues, what AffineConstraints calls, looks up every column
+    // of every row): the same one addition per entry, in cell order (as the
+    // mechanics' copier, source/mechanics/assembly.cc).
+    std::vector<int> local_rows(fe.n_dofs_per_cell()), local_cols(fe.n_dofs_per_cell());
+    auto add_by_local_indices = [&](const thermal::CopyData &c) {
+      auto &matrix = const_cast<Epetra_CrsMatrix &>(tangent->trilinos_matrix());
+      for (unsigned int i = 0; i < c.dofs.size(); ++i)
+        {
+          if (hanging.is_constrained(c.dofs[i]))
+            return false;
+          const auto g  = static_cast<TrilinosWrappers::types::int_type>(c.dofs[i]);
+          local_rows[i] = matrix.LRID(g);
+          local_cols[i] = matrix.LCID(g);
+          if (local_rows[i] < 0 || local_cols[i] < 0)
+            return false;
+        }
+      for (unsigned int i = 0; i < c.dofs.size(); ++i)
+        {
+          const int ierr = matrix.SumIntoMyValues(local_rows[i], c.dofs.size(), &c.matrix(i, 0),
+                                                  local_cols.data());
+          AssertThrow(ierr == 0, ExcTrilinosError(ierr));
+        }
+      return true;
+    };
     auto copier = [&](const thermal::CopyData &c) {
       if (rhs)
         constraints.distribute_local_to_global(c.vector, c.dofs, *rhs);
@@ -442,7 +470,7 @@ namespace anvil
       // and, where ARKode takes one Newton step (a linear problem), leaves an
       // error ~ γ K_IB Δg: 646 K instead of <= 393 K on a strip heated from
       // 293 K at 100 K/s (tests/heat_dirichlet_ramp.py).
-      if (tangent)
+      if (tangent && !add_by_local_indices(c))
         hanging.distribute_local_to_global(c.matrix, c.dofs, *tangent);
     };
     for_owned_cells(dof_handler, worker, copier, scratch);
