@@ -229,6 +229,10 @@ namespace anvil
         double s = b[row];
         for (int e = 0; e < m; ++e)
           {
+            // Ghost columns are skipped: block Jacobi across processes. The
+            // other processes' values imported once per sweep (hybrid
+            // Gauss–Seidel) hung ML's V-cycle on 2 processes (the Import and
+            // ML's own communication fell out of step; not understood).
             const int j = column_to_row[cols[e]];
             if (j >= 0)
               s -= v[e] * x[j];
