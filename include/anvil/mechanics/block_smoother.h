@@ -15,8 +15,9 @@ namespace anvil
   /**
    * Multiplicative block Gauss–Seidel on aggregates of nodes: each block is
    * a node and its (up to 3^dim − 1) neighbours in K's graph, as ML's
-   * uncoupled aggregation would make them, its diagonal block of K factorised
-   * once (dense LU with partial pivoting) when the smoother is built.
+   * uncoupled aggregation would make them, its diagonal block of K inverted
+   * once (dense LU with partial pivoting, then the explicit inverse) when
+   * the smoother is built.
    *
    * Why blocks of this size: in plastic flow the tangent is nearly
    * incompressible (bulk / shear ≈ 500), and every field with small
@@ -76,7 +77,9 @@ namespace anvil
     std::vector<int> column_to_row;
     /// Rows of block k: rows[block_start[k] .. block_start[k+1]).
     std::vector<unsigned int> block_start, rows;
-    /// LU factors (row-major, n_k × n_k) and pivots of each block.
+    /// The inverse of each diagonal block (row-major, n_k × n_k); pivots:
+    /// unused since the inverses replaced the LU factors (kept to spare a
+    /// rebuild of every includer of linear_solver.h; to be removed).
     std::vector<std::size_t> factor_start;
     std::vector<double>      factors;
     std::vector<int>         pivots;
