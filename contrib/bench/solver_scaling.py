@@ -22,7 +22,9 @@ Usage: solver_scaling.py BUILD_DIR OUT_DIR [--small] [--large] [--cases 2d,3d,st
 
 The environment reaches every run: ANVIL_ML_PARAMETERS sets ML's parameters
 (e.g. 'smoother: type (level 0)=IFPACK; ...') and ANVIL_ISOCHORIC_MODES=1 adds
-the isochoric linear fields to the near-null space (doc/linear_solver.md).
+the isochoric linear fields to the near-null space, ANVIL_FINE_SMOOTHER=blocks
+smooths the fine level with anvil's aggregate-block Gauss-Seidel
+(ANVIL_BLOCK_SWEEPS sweeps per smoothing, default 2; doc/linear_solver.md).
 
 --set passes an entry to every run (e.g. 'Mechanics/Linear solver/AMG rebuild
 growth=0' for the hierarchy built at every solve, as before session 8).

@@ -104,6 +104,20 @@ namespace anvil
       const FEValues<dim> &fe_values = scratch.fe_values;
       const unsigned int   n         = copy.dofs.size();
       const double         dk        = material.dk_dT();
+      if (dk == 0)
+        {
+          // k(T) = k₀ (1 + 0·(T − T_ref)) = k₀ and the dk term adds zero: the
+          // same entries without T (the linear tangent does not fetch it).
+          for (unsigned int q = 0; q < scratch.weight.size(); ++q)
+            {
+              const double w = scratch.weight[q];
+              const double k = material.conductivity;
+              for (unsigned int i = 0; i < n; ++i)
+                for (unsigned int j = 0; j < n; ++j)
+                  copy.matrix(i, j) += (k * (fe_values.shape_grad(i, q) * fe_values.shape_grad(j, q))) * w;
+            }
+          return;
+        }
       for (unsigned int q = 0; q < scratch.weight.size(); ++q)
         {
           const double w = scratch.weight[q];

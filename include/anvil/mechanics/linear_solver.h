@@ -10,6 +10,8 @@
 #include <deal.II/lac/trilinos_sparse_matrix.h>
 #include <deal.II/lac/trilinos_vector.h>
 
+#include <anvil/mechanics/block_smoother.h>
+
 #include <functional>
 #include <string>
 #include <memory>
@@ -73,6 +75,9 @@ namespace anvil
     /// ReusedAMG: iterations allowed to a kept hierarchy, in units of its
     /// first solve's (0: a new hierarchy for every solve).
     double       rebuild_growth = 0;
+    /// Fine level smoothed by AggregateBlockSmoother (block_smoother.h)
+    /// instead of ML's Chebyshev; needs components > 1 or scalar rows.
+    bool         aggregate_blocks = false;
   };
 
   /**
@@ -113,12 +118,18 @@ namespace anvil
                        const std::function<RigidBodyModes()>                       &modes,
                        const IterativeSolverSettings                                &settings);
     /// Forget the hierarchy (K was re-created: a new pattern).
-    void clear() { amg.reset(); }
+    void clear()
+    {
+      amg.reset();
+      smoother.reset();
+    }
     /// Hierarchies built so far (benchmarks).
     unsigned int builds() const { return n_builds; }
 
   private:
     std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> amg;
+    /// The fine-level smoother ML's hierarchy calls (aggregate_blocks).
+    std::unique_ptr<AggregateBlockSmoother> smoother;
     const dealii::TrilinosWrappers::SparseMatrix              *matrix = nullptr;
     unsigned int first_iterations = 0, n_builds = 0;
   };
