@@ -88,6 +88,7 @@ namespace anvil
       copy.max_plastic_increment = 0;
       scratch.reinit(cell, reference, formulation->component, centre, axisymmetric);
       cell->get_dof_indices(copy.dof_indices);
+      copy.cell_index = cell->active_cell_index();
       for (unsigned int i = 0; i < copy.dof_indices.size(); ++i)
         {
           scratch.local_u[i]     = solution(copy.dof_indices[i]);
@@ -132,28 +133,36 @@ namespace anvil
     max_plastic_increment = 0;
     material_failure.clear();
     // A cell with no constrained dof and only owned rows adds its matrix by
-    // local row and column numbers, looked up once per dof: Epetra's
-    // SumIntoGlobalValues (what AffineConstraints calls) looks up every
-    // column of every row, 8x the look-ups. The same one addition per entry.
+    // local row and column numbers, looked up once per dof and kept per cell
+    // while the matrix is (cell_local_ids): Epetra's SumIntoGlobalValues
+    // (what AffineConstraints calls) looks up every column of every row, 8x
+    // the look-ups. The same one addition per entry.
     // deal.II 9.4 gives only const access to the Epetra matrix; ours is not const.
     const unsigned int n_dofs = fe.n_dofs_per_cell();
-    std::vector<int>   local_rows(n_dofs), local_cols(n_dofs);
+    if (with_matrix && cell_local_ids.empty())
+      cell_local_ids.assign(std::size_t(2) * n_dofs * triangulation.n_active_cells(), -2);
     auto add_by_local_indices = [&](const CopyData &copy) {
       auto &matrix = const_cast<Epetra_CrsMatrix &>(system_matrix.trilinos_matrix());
+      // Constraints change between steps (the predictor's): asked every time.
       for (unsigned int i = 0; i < n_dofs; ++i)
-        {
-          const auto g = static_cast<TrilinosWrappers::types::int_type>(copy.dof_indices[i]);
-          if (active_constraints->is_constrained(copy.dof_indices[i]))
-            return false;
-          local_rows[i] = matrix.LRID(g);
-          local_cols[i] = matrix.LCID(g);
-          if (local_rows[i] < 0 || local_cols[i] < 0)
-            return false;
-        }
+        if (active_constraints->is_constrained(copy.dof_indices[i]))
+          return false;
+      int *const local_rows = &cell_local_ids[std::size_t(2) * n_dofs * copy.cell_index];
+      int *const local_cols = local_rows + n_dofs;
+      if (local_rows[0] == -2)
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          {
+            const auto g = static_cast<TrilinosWrappers::types::int_type>(copy.dof_indices[i]);
+            local_rows[i] = matrix.LRID(g);
+            local_cols[i] = matrix.LCID(g);
+          }
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        if (local_rows[i] < 0 || local_cols[i] < 0)
+          return false;
       for (unsigned int i = 0; i < n_dofs; ++i)
         {
           const int ierr =
-            matrix.SumIntoMyValues(local_rows[i], n_dofs, &copy.matrix(i, 0), local_cols.data());
+            matrix.SumIntoMyValues(local_rows[i], n_dofs, &copy.matrix(i, 0), local_cols);
           AssertThrow(ierr == 0, ExcTrilinosError(ierr));
         }
       system_rhs.add(copy.dof_indices, copy.rhs);

@@ -19,52 +19,80 @@ namespace anvil
       /**
        * K += G (A Gᵀ + T0 ⊗ tr) w, i.e. K_ab += G_a : AG_b with
        * AG_b = (A : G_b + T0 tr_b) w, on dense arrays: @p Gt is Gᵀ
-       * (n_dir x n_dofs), @p AGt receives AGᵀ, @p K is row-major n_dofs x
-       * n_dofs; @p tr null without F-bar. N_DIR, N_DOFS: the sizes at
-       * compile time (0: the run-time @p n_dir, @p n_dofs).
+       * (n_dir x n_dofs), @p K row-major n_dofs x n_dofs; @p tr null without
+       * F-bar. Every sum adds its nonzero terms in the order of the
+       * directions, as the sparse G_a did: the same bits. A zero G_ac (the
+       * other components' directions) is skipped, which changes no sum.
+       * N_DIR, N_DOFS: the sizes at compile time, so that the work arrays
+       * live on the stack and the loops over b vectorise.
        */
       template <unsigned int N_DIR, unsigned int N_DOFS>
-      void add_dense_tangent(const unsigned int n_dir_, const unsigned int n_dofs_,
+      void add_dense_tangent(const std::array<std::array<double, 9>, 9> &A,
+                             const double *__restrict Gt_in, const double *__restrict T0,
+                             const double *__restrict tr, const double w, double *__restrict K)
+      {
+        double Gt[N_DIR][N_DOFS], AG[N_DIR][N_DOFS];
+        for (unsigned int d = 0; d < N_DIR; ++d)
+          for (unsigned int b = 0; b < N_DOFS; ++b)
+            Gt[d][b] = Gt_in[d * N_DOFS + b];
+        for (unsigned int c = 0; c < N_DIR; ++c)
+          {
+            double s[N_DOFS] = {};
+            for (unsigned int d = 0; d < N_DIR; ++d)
+              {
+                const double Acd = A[c][d];
+                for (unsigned int b = 0; b < N_DOFS; ++b)
+                  s[b] += Acd * Gt[d][b];
+              }
+            if (tr)
+              for (unsigned int b = 0; b < N_DOFS; ++b)
+                s[b] += T0[c] * tr[b];
+            for (unsigned int b = 0; b < N_DOFS; ++b)
+              AG[c][b] = s[b] * w;
+          }
+        for (unsigned int a = 0; a < N_DOFS; ++a)
+          {
+            double s[N_DOFS] = {};
+            for (unsigned int c = 0; c < N_DIR; ++c)
+              if (const double Gac = Gt[c][a]; Gac != 0)
+                for (unsigned int b = 0; b < N_DOFS; ++b)
+                  s[b] += Gac * AG[c][b];
+            for (unsigned int b = 0; b < N_DOFS; ++b)
+              K[a * N_DOFS + b] += s[b];
+          }
+      }
+
+      /// add_dense_tangent for sizes known at run time only (@p AGt: n_dir + 1 rows).
+      void add_dense_tangent(const unsigned int n_dir, const unsigned int n_dofs,
                              const std::array<std::array<double, 9>, 9> &A, const double *Gt,
                              const double *T0, const double *tr, const double w, double *AGt,
                              double *K)
       {
-        const unsigned int n_dir  = N_DIR ? N_DIR : n_dir_;
-        const unsigned int n_dofs = N_DOFS ? N_DOFS : n_dofs_;
         for (unsigned int c = 0; c < n_dir; ++c)
           {
             double *ag = AGt + c * n_dofs;
             for (unsigned int b = 0; b < n_dofs; ++b)
               ag[b] = 0;
             for (unsigned int d = 0; d < n_dir; ++d)
-              {
-                const double  Acd = A[c][d];
-                const double *g   = Gt + d * n_dofs;
-                for (unsigned int b = 0; b < n_dofs; ++b)
-                  ag[b] += Acd * g[b];
-              }
+              for (unsigned int b = 0; b < n_dofs; ++b)
+                ag[b] += A[c][d] * Gt[d * n_dofs + b];
             if (tr)
               for (unsigned int b = 0; b < n_dofs; ++b)
                 ag[b] += T0[c] * tr[b];
             for (unsigned int b = 0; b < n_dofs; ++b)
               ag[b] *= w;
           }
+        double *s = AGt + n_dir * n_dofs;
         for (unsigned int a = 0; a < n_dofs; ++a)
           {
-            double  local[N_DOFS ? N_DOFS : 1];
-            double *s = N_DOFS ? local : AGt + n_dir * n_dofs; // run-time sizes: AGt's spare row
             for (unsigned int b = 0; b < n_dofs; ++b)
               s[b] = 0;
             for (unsigned int c = 0; c < n_dir; ++c)
-              {
-                const double  Gac = Gt[c * n_dofs + a];
-                const double *ag  = AGt + c * n_dofs;
+              if (const double Gac = Gt[c * n_dofs + a]; Gac != 0)
                 for (unsigned int b = 0; b < n_dofs; ++b)
-                  s[b] += Gac * ag[b];
-              }
-            double *k = K + a * n_dofs;
+                  s[b] += Gac * AGt[c * n_dofs + b];
             for (unsigned int b = 0; b < n_dofs; ++b)
-              k[b] += s[b];
+              K[a * n_dofs + b] += s[b];
           }
       }
     } // namespace
@@ -160,18 +188,15 @@ namespace anvil
       double       *K  = &copy.matrix(0, 0);
       // Sizes known at compile time for the Q1 elements (the loops unroll
       // and vectorise over b); any other element takes the general loop.
+      const double *T0 = scratch.T0.data();
       if (n_dir == 5 && n_dofs == 8)
-        add_dense_tangent<5, 8>(n_dir, n_dofs, A, Gt, scratch.T0.data(), tr, w,
-                                scratch.AGt.data(), K);
+        add_dense_tangent<5, 8>(A, Gt, T0, tr, w, K);
       else if (n_dir == 4 && n_dofs == 8)
-        add_dense_tangent<4, 8>(n_dir, n_dofs, A, Gt, scratch.T0.data(), tr, w,
-                                scratch.AGt.data(), K);
+        add_dense_tangent<4, 8>(A, Gt, T0, tr, w, K);
       else if (n_dir == 9 && n_dofs == 24)
-        add_dense_tangent<9, 24>(n_dir, n_dofs, A, Gt, scratch.T0.data(), tr, w,
-                                 scratch.AGt.data(), K);
+        add_dense_tangent<9, 24>(A, Gt, T0, tr, w, K);
       else
-        add_dense_tangent<0, 0>(n_dir, n_dofs, A, Gt, scratch.T0.data(), tr, w,
-                                scratch.AGt.data(), K);
+        add_dense_tangent(n_dir, n_dofs, A, Gt, T0, tr, w, scratch.AGt.data(), K);
     }
 
     ANVIL_INSTANTIATE_CLASS(StressDivergence)

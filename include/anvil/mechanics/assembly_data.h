@@ -175,6 +175,7 @@ namespace anvil
       dealii::Vector<double>     external; // f_ext
       dealii::Vector<double>     inertia;  // M a_{n+1} (dynamics)
       std::vector<dealii::types::global_dof_index> dof_indices;
+      unsigned int cell_index = 0; // the cell's active_cell_index()
 
       /// Per point, the energy audit's terms of the step (AuditTerm; summed by
       /// the copier point by point, in cell order: the same sums on any
