@@ -134,20 +134,18 @@ namespace anvil
     material_failure.clear();
     // A cell with no constrained dof and only owned rows adds its matrix by
     // local row and column numbers, looked up once per dof and kept per cell
-    // while the matrix is (cell_local_ids): Epetra's SumIntoGlobalValues
+    // while the matrix is (AssemblyMapping::local_indices): Epetra's SumIntoGlobalValues
     // (what AffineConstraints calls) looks up every column of every row, 8x
     // the look-ups. The same one addition per entry.
     // deal.II 9.4 gives only const access to the Epetra matrix; ours is not const.
     const unsigned int n_dofs = fe.n_dofs_per_cell();
-    if (with_matrix && cell_local_ids.empty())
-      cell_local_ids.assign(std::size_t(2) * n_dofs * triangulation.n_active_cells(), -2);
     auto add_by_local_indices = [&](const CopyData &copy) {
       auto &matrix = const_cast<Epetra_CrsMatrix &>(system_matrix.trilinos_matrix());
       // Constraints change between steps (the predictor's): asked every time.
       for (unsigned int i = 0; i < n_dofs; ++i)
         if (active_constraints->is_constrained(copy.dof_indices[i]))
           return false;
-      int *const local_rows = &cell_local_ids[std::size_t(2) * n_dofs * copy.cell_index];
+      int *const local_rows = assembly_mapping->local_indices(copy.cell_index, n_dofs);
       int *const local_cols = local_rows + n_dofs;
       if (local_rows[0] == -2)
         for (unsigned int i = 0; i < n_dofs; ++i)

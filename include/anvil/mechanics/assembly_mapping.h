@@ -58,6 +58,21 @@ namespace anvil
                                                    bool                              with_radius,
                                                    std::size_t max_bytes = 64u << 20) const;
 
+      /**
+       * Per active cell index, @p n_dofs Epetra local row numbers of the
+       * cell's dofs then @p n_dofs local column numbers (first −2: not
+       * looked up yet), for the assembly's copier: kept with the reference
+       * values, valid while the matrix is (forget_local_indices() when a new
+       * matrix is made). Not thread-safe: the copier runs serially.
+       */
+      int *local_indices(unsigned int active_cell_index, unsigned int n_dofs) const
+      {
+        if (local_ids.empty())
+          local_ids.assign(std::size_t(2) * n_dofs * n_active_cells, -2);
+        return &local_ids[std::size_t(2) * n_dofs * active_cell_index];
+      }
+      void forget_local_indices() const { local_ids.clear(); }
+
     protected:
       dealii::CellSimilarity::Similarity
       fill_fe_values(const typename dealii::Triangulation<dim>::cell_iterator &cell,
@@ -75,6 +90,7 @@ namespace anvil
       unsigned int                                                     n_active_cells = 0;
       mutable std::shared_ptr<ReferenceValues<dim>>                    values;
       mutable bool                                                     values_refused = false;
+      mutable std::vector<int>                                         local_ids;
     };
   } // namespace MechanicsAssembly
 } // namespace anvil

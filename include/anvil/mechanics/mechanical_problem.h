@@ -434,10 +434,6 @@ namespace anvil
     /// the mass does not change, the mesh being the reference one); empty
     /// until first used.
     mutable std::vector<double> cell_masses;
-    /// Per active cell index, the Epetra local row and column numbers of its
-    /// dofs (2 n_dofs_per_cell; first −2: not looked up yet), for the copier:
-    /// they hold while the matrix does (cleared by setup_matrix()).
-    std::vector<int> cell_local_ids;
     mutable std::map<dealii::types::boundary_id,
                      std::vector<std::pair<dealii::types::global_dof_index, unsigned int>>>
       boundary_dofs; // owned_boundary_dofs()
