@@ -80,6 +80,27 @@ namespace anvil
       fe, quadrature, formulation->component, axisymmetric);
     const bool centre = formulation->f_bar;
 
+    // The ghosted vectors share one map (checked): their local values.
+    const unsigned int    n_dofs_per_cell = fe.n_dofs_per_cell();
+    const Epetra_BlockMap &vector_map     = solution.trilinos_vector().Map();
+    // (Epetra's SameAs() is collective; this is the local part of it.)
+    const auto same_map = [&](const TrilinosWrappers::MPI::Vector &v) {
+      const Epetra_BlockMap &m = v.trilinos_vector().Map();
+      return m.DataPtr() == vector_map.DataPtr() ||
+             (m.NumMyElements() == vector_map.NumMyElements() &&
+              std::equal(m.MyGlobalElements(), m.MyGlobalElements() + m.NumMyElements(),
+                         vector_map.MyGlobalElements()));
+    };
+    AssertThrow(same_map(old_solution) &&
+                  (!dynamic || (same_map(velocity_old_ghosted) && same_map(acceleration_old_ghosted))),
+                ExcInternalError());
+    const double *const u_values     = solution.trilinos_vector()[0];
+    const double *const u_old_values = old_solution.trilinos_vector()[0];
+    const double *const v_old_values = dynamic ? velocity_old_ghosted.trilinos_vector()[0] : nullptr;
+    const double *const a_old_values =
+      dynamic ? acceleration_old_ghosted.trilinos_vector()[0] : nullptr;
+    assembly_mapping->reserve_vector_indices(n_dofs_per_cell);
+
     // One cell on any thread: its dof values, then the terms in a fixed
     // order (each term's sums run in the order of the serial loop).
     auto worker = [&](const CellIterator<dim> &cell, ScratchData<dim> &scratch, CopyData &copy) {
@@ -88,20 +109,30 @@ namespace anvil
       copy.max_plastic_increment = 0;
       scratch.reinit(cell, reference, formulation->component, centre, axisymmetric);
       cell->get_dof_indices(copy.dof_indices);
-      for (unsigned int i = 0; i < copy.dof_indices.size(); ++i)
+      copy.cell_index = cell->active_cell_index();
+      // The dof values by local index in the ghosted vectors' map (one
+      // look-up per dof and mesh, not one per value and assembly).
+      int *const lids = assembly_mapping->vector_indices(copy.cell_index, n_dofs_per_cell);
+      if (lids[0] == -2)
+        for (unsigned int i = 0; i < n_dofs_per_cell; ++i)
+          {
+            lids[i] = vector_map.LID(static_cast<TrilinosWrappers::types::int_type>(copy.dof_indices[i]));
+            AssertThrow(lids[i] >= 0, ExcInternalError()); // a cell's dofs are relevant
+          }
+      for (unsigned int i = 0; i < n_dofs_per_cell; ++i)
         {
-          scratch.local_u[i]     = solution(copy.dof_indices[i]);
-          scratch.local_u_old[i] = old_solution(copy.dof_indices[i]);
+          scratch.local_u[i]     = u_values[lids[i]];
+          scratch.local_u_old[i] = u_old_values[lids[i]];
         }
       if (with_matrix)
         copy.matrix = 0;
       copy.internal = 0;
       copy.external = 0;
       if (dynamic)
-        for (unsigned int i = 0; i < copy.dof_indices.size(); ++i)
+        for (unsigned int i = 0; i < n_dofs_per_cell; ++i)
           {
-            scratch.local_v_old[i] = velocity_old_ghosted(copy.dof_indices[i]);
-            scratch.local_a_old[i] = acceleration_old_ghosted(copy.dof_indices[i]);
+            scratch.local_v_old[i] = v_old_values[lids[i]];
+            scratch.local_a_old[i] = a_old_values[lids[i]];
           }
       scratch.rho =
         (dynamic || context.body_force) ? materials.at(cell->material_id())->density() : 0;
@@ -132,28 +163,34 @@ namespace anvil
     max_plastic_increment = 0;
     material_failure.clear();
     // A cell with no constrained dof and only owned rows adds its matrix by
-    // local row and column numbers, looked up once per dof: Epetra's
-    // SumIntoGlobalValues (what AffineConstraints calls) looks up every
-    // column of every row, 8x the look-ups. The same one addition per entry.
+    // local row and column numbers, looked up once per dof and kept per cell
+    // while the matrix is (AssemblyMapping::local_indices): Epetra's SumIntoGlobalValues
+    // (what AffineConstraints calls) looks up every column of every row, 8x
+    // the look-ups. The same one addition per entry.
     // deal.II 9.4 gives only const access to the Epetra matrix; ours is not const.
     const unsigned int n_dofs = fe.n_dofs_per_cell();
-    std::vector<int>   local_rows(n_dofs), local_cols(n_dofs);
     auto add_by_local_indices = [&](const CopyData &copy) {
       auto &matrix = const_cast<Epetra_CrsMatrix &>(system_matrix.trilinos_matrix());
+      // Constraints change between steps (the predictor's): asked every time.
       for (unsigned int i = 0; i < n_dofs; ++i)
-        {
-          const auto g = static_cast<TrilinosWrappers::types::int_type>(copy.dof_indices[i]);
-          if (active_constraints->is_constrained(copy.dof_indices[i]))
-            return false;
-          local_rows[i] = matrix.LRID(g);
-          local_cols[i] = matrix.LCID(g);
-          if (local_rows[i] < 0 || local_cols[i] < 0)
-            return false;
-        }
+        if (active_constraints->is_constrained(copy.dof_indices[i]))
+          return false;
+      int *const local_rows = assembly_mapping->local_indices(copy.cell_index, n_dofs);
+      int *const local_cols = local_rows + n_dofs;
+      if (local_rows[0] == -2)
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          {
+            const auto g = static_cast<TrilinosWrappers::types::int_type>(copy.dof_indices[i]);
+            local_rows[i] = matrix.LRID(g);
+            local_cols[i] = matrix.LCID(g);
+          }
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        if (local_rows[i] < 0 || local_cols[i] < 0)
+          return false;
       for (unsigned int i = 0; i < n_dofs; ++i)
         {
           const int ierr =
-            matrix.SumIntoMyValues(local_rows[i], n_dofs, &copy.matrix(i, 0), local_cols.data());
+            matrix.SumIntoMyValues(local_rows[i], n_dofs, &copy.matrix(i, 0), local_cols);
           AssertThrow(ierr == 0, ExcTrilinosError(ierr));
         }
       system_rhs.add(copy.dof_indices, copy.rhs);

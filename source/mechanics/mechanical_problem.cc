@@ -195,6 +195,7 @@ namespace anvil
   void MechanicalProblem<dim>::setup_matrix()
   {
     direct_solver.clear(); // a new pattern: analyse it again
+    assembly_mapping->forget_local_indices(); // and new local row and column numbers
     amg.clear();           // it references the matrix about to be re-created
     // Contact couples dofs of different cells (a slave node with the nodes of
     // the master face below it), possibly owned by other processes: their

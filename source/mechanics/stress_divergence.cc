@@ -6,11 +6,96 @@
 #include <anvil/core/instantiate.h>
 #include <anvil/mechanics/assembly_kernels.h>
 
+#include <algorithm>
+
 namespace anvil
 {
   namespace MechanicsAssembly
   {
     using namespace dealii;
+
+    namespace
+    {
+      /**
+       * K += G (A Gᵀ + T0 ⊗ tr) w, i.e. K_ab += G_a : AG_b with
+       * AG_b = (A : G_b + T0 tr_b) w, on dense arrays: @p Gt is Gᵀ
+       * (n_dir x n_dofs), @p K row-major n_dofs x n_dofs; @p tr null without
+       * F-bar. Every sum adds its nonzero terms in the order of the
+       * directions, as the sparse G_a did: the same bits. A zero G_ac (the
+       * other components' directions) is skipped, which changes no sum.
+       * N_DIR, N_DOFS: the sizes at compile time, so that the work arrays
+       * live on the stack and the loops over b vectorise.
+       */
+      template <unsigned int N_DIR, unsigned int N_DOFS>
+      void add_dense_tangent(const std::array<std::array<double, 9>, 9> &A,
+                             const double *__restrict Gt_in, const double *__restrict T0,
+                             const double *__restrict tr, const double w, double *__restrict K)
+      {
+        double Gt[N_DIR][N_DOFS], AG[N_DIR][N_DOFS];
+        for (unsigned int d = 0; d < N_DIR; ++d)
+          for (unsigned int b = 0; b < N_DOFS; ++b)
+            Gt[d][b] = Gt_in[d * N_DOFS + b];
+        for (unsigned int c = 0; c < N_DIR; ++c)
+          {
+            double s[N_DOFS] = {};
+            for (unsigned int d = 0; d < N_DIR; ++d)
+              {
+                const double Acd = A[c][d];
+                for (unsigned int b = 0; b < N_DOFS; ++b)
+                  s[b] += Acd * Gt[d][b];
+              }
+            if (tr)
+              for (unsigned int b = 0; b < N_DOFS; ++b)
+                s[b] += T0[c] * tr[b];
+            for (unsigned int b = 0; b < N_DOFS; ++b)
+              AG[c][b] = s[b] * w;
+          }
+        for (unsigned int a = 0; a < N_DOFS; ++a)
+          {
+            double s[N_DOFS] = {};
+            for (unsigned int c = 0; c < N_DIR; ++c)
+              if (const double Gac = Gt[c][a]; Gac != 0)
+                for (unsigned int b = 0; b < N_DOFS; ++b)
+                  s[b] += Gac * AG[c][b];
+            for (unsigned int b = 0; b < N_DOFS; ++b)
+              K[a * N_DOFS + b] += s[b];
+          }
+      }
+
+      /// add_dense_tangent for sizes known at run time only (@p AGt: n_dir + 1 rows).
+      void add_dense_tangent(const unsigned int n_dir, const unsigned int n_dofs,
+                             const std::array<std::array<double, 9>, 9> &A, const double *Gt,
+                             const double *T0, const double *tr, const double w, double *AGt,
+                             double *K)
+      {
+        for (unsigned int c = 0; c < n_dir; ++c)
+          {
+            double *ag = AGt + c * n_dofs;
+            for (unsigned int b = 0; b < n_dofs; ++b)
+              ag[b] = 0;
+            for (unsigned int d = 0; d < n_dir; ++d)
+              for (unsigned int b = 0; b < n_dofs; ++b)
+                ag[b] += A[c][d] * Gt[d * n_dofs + b];
+            if (tr)
+              for (unsigned int b = 0; b < n_dofs; ++b)
+                ag[b] += T0[c] * tr[b];
+            for (unsigned int b = 0; b < n_dofs; ++b)
+              ag[b] *= w;
+          }
+        double *s = AGt + n_dir * n_dofs;
+        for (unsigned int a = 0; a < n_dofs; ++a)
+          {
+            for (unsigned int b = 0; b < n_dofs; ++b)
+              s[b] = 0;
+            for (unsigned int c = 0; c < n_dir; ++c)
+              if (const double Gac = Gt[c * n_dofs + a]; Gac != 0)
+                for (unsigned int b = 0; b < n_dofs; ++b)
+                  s[b] += Gac * AGt[c * n_dofs + b];
+            for (unsigned int b = 0; b < n_dofs; ++b)
+              K[a * n_dofs + b] += s[b];
+          }
+      }
+    } // namespace
 
     template <int dim>
     void StressDivergence<dim>::assemble(ScratchData<dim> &scratch, CopyData &copy) const
@@ -90,71 +175,28 @@ namespace anvil
       if (f_bar_on)
         f_bar.centre_coupling(J, F_inv_T, dsigma_Fbar, scratch.T0);
 
-      // AG_b = (A : G_b (+ T0 tr_b)) w and K_ab += G_a : AG_b. G_a has 2 or 3
-      // entries (3: the hoop term); the sums run in the order of the entries,
-      // as the general loop (last branch) does.
+      // G_a as the dense columns of Gᵀ (zeros where a's component has no
+      // direction): the products below run over every direction in the
+      // order of the directions, so each sum adds the same nonzero terms in
+      // the same order as the sparse G_a did, plus exact zeros.
+      double *Gt = scratch.Gt.data();
+      std::fill(Gt, Gt + n_dir * n_dofs, 0.);
       for (unsigned int b = 0; b < n_dofs; ++b)
-        {
-          const ShapeGradient &g  = G[b];
-          auto                &ag = scratch.AG[b];
-          const double         tr = f_bar_on ? scratch.center_trace[b] : 0.;
-          for (unsigned int c = 0; c < n_dir; ++c)
-            {
-              const auto &Ac = A[c];
-              double      s  = 0;
-              if (g.n == 2)
-                {
-                  s += Ac[g.c[0]] * g.v[0];
-                  s += Ac[g.c[1]] * g.v[1];
-                }
-              else
-                for (unsigned int e = 0; e < g.n; ++e)
-                  s += Ac[g.c[e]] * g.v[e];
-              if (f_bar_on)
-                s += scratch.T0[c] * tr;
-              ag[c] = s * w;
-            }
-        }
-      for (unsigned int a = 0; a < n_dofs; ++a)
-        {
-          const ShapeGradient &g   = G[a];
-          double              *row = &copy.matrix(a, 0);
-          if (g.n == 2)
-            {
-              const int    c0 = g.c[0], c1 = g.c[1];
-              const double v0 = g.v[0], v1 = g.v[1];
-              for (unsigned int b = 0; b < n_dofs; ++b)
-                {
-                  const auto &ag = scratch.AG[b];
-                  double      s  = 0;
-                  s += v0 * ag[c0];
-                  s += v1 * ag[c1];
-                  row[b] += s;
-                }
-            }
-          else if (g.n == 3)
-            {
-              const int    c0 = g.c[0], c1 = g.c[1], c2 = g.c[2];
-              const double v0 = g.v[0], v1 = g.v[1], v2 = g.v[2];
-              for (unsigned int b = 0; b < n_dofs; ++b)
-                {
-                  const auto &ag = scratch.AG[b];
-                  double      s  = 0;
-                  s += v0 * ag[c0];
-                  s += v1 * ag[c1];
-                  s += v2 * ag[c2];
-                  row[b] += s;
-                }
-            }
-          else
-            for (unsigned int b = 0; b < n_dofs; ++b)
-              {
-                double s = 0;
-                for (unsigned int e = 0; e < g.n; ++e)
-                  s += g.v[e] * scratch.AG[b][g.c[e]];
-                row[b] += s;
-              }
-        }
+        for (unsigned int e = 0; e < G[b].n; ++e)
+          Gt[G[b].c[e] * n_dofs + b] = G[b].v[e];
+      const double *tr = f_bar_on ? scratch.center_trace.data() : nullptr;
+      double       *K  = &copy.matrix(0, 0);
+      // Sizes known at compile time for the Q1 elements (the loops unroll
+      // and vectorise over b); any other element takes the general loop.
+      const double *T0 = scratch.T0.data();
+      if (n_dir == 5 && n_dofs == 8)
+        add_dense_tangent<5, 8>(A, Gt, T0, tr, w, K);
+      else if (n_dir == 4 && n_dofs == 8)
+        add_dense_tangent<4, 8>(A, Gt, T0, tr, w, K);
+      else if (n_dir == 9 && n_dofs == 24)
+        add_dense_tangent<9, 24>(A, Gt, T0, tr, w, K);
+      else
+        add_dense_tangent(n_dir, n_dofs, A, Gt, T0, tr, w, scratch.AGt.data(), K);
     }
 
     ANVIL_INSTANTIATE_CLASS(StressDivergence)

@@ -137,12 +137,13 @@ namespace anvil
       std::vector<PointValues> points;
       IncrementalKinematics    audit_kin; // the energy audit's true kinematics (F-bar)
 
-      // Stress divergence: G_a, δσ per direction, A = ∂P_c/∂F_d, T0 (F-bar), A : G_b.
+      // Stress divergence: G_a, δσ per direction, A = ∂P_c/∂F_d, T0 (F-bar);
+      // Gᵀ dense (n_dir x n_dofs) and (A : G_b)ᵀ (n_dir + 1 rows: one spare).
       std::vector<ShapeGradient>                  G;
       std::array<dealii::SymmetricTensor<2, 3>, 9> dsigma;
       std::array<std::array<double, 9>, 9>        A;
       std::array<double, 9>                       T0;
-      std::vector<std::array<double, 9>>          AG;
+      std::vector<double>                         Gt, AGt;
 
       dealii::FullMatrix<double>          cell_mass; // inertia
       std::vector<double>                 node_mass; // inertia: per node pair
@@ -174,6 +175,7 @@ namespace anvil
       dealii::Vector<double>     external; // f_ext
       dealii::Vector<double>     inertia;  // M a_{n+1} (dynamics)
       std::vector<dealii::types::global_dof_index> dof_indices;
+      unsigned int cell_index = 0; // the cell's active_cell_index()
 
       /// Per point, the energy audit's terms of the step (AuditTerm; summed by
       /// the copier point by point, in cell order: the same sums on any

@@ -58,6 +58,38 @@ namespace anvil
                                                    bool                              with_radius,
                                                    std::size_t max_bytes = 64u << 20) const;
 
+      /**
+       * Per active cell index, @p n_dofs Epetra local row numbers of the
+       * cell's dofs then @p n_dofs local column numbers (first −2: not
+       * looked up yet), for the assembly's copier: kept with the reference
+       * values, valid while the matrix is (forget_local_indices() when a new
+       * matrix is made). Not thread-safe: the copier runs serially.
+       */
+      int *local_indices(unsigned int active_cell_index, unsigned int n_dofs) const
+      {
+        if (local_ids.empty())
+          local_ids.assign(std::size_t(2) * n_dofs * n_active_cells, -2);
+        return &local_ids[std::size_t(2) * n_dofs * active_cell_index];
+      }
+      void forget_local_indices() const { local_ids.clear(); }
+
+      /**
+       * Per active cell index, the local numbers of its @p n_dofs dofs in the
+       * ghosted vectors' map (first −2: not looked up yet), so that the
+       * worker reads u, uₙ, vₙ, aₙ without a global-to-local look-up per
+       * value. Sized by reserve_vector_indices() before the loop (serially);
+       * a worker then fills and reads only its own cell's entries.
+       */
+      void reserve_vector_indices(const unsigned int n_dofs) const
+      {
+        if (vector_ids.empty())
+          vector_ids.assign(std::size_t(n_dofs) * n_active_cells, -2);
+      }
+      int *vector_indices(unsigned int active_cell_index, unsigned int n_dofs) const
+      {
+        return &vector_ids[std::size_t(n_dofs) * active_cell_index];
+      }
+
     protected:
       dealii::CellSimilarity::Similarity
       fill_fe_values(const typename dealii::Triangulation<dim>::cell_iterator &cell,
@@ -75,6 +107,7 @@ namespace anvil
       unsigned int                                                     n_active_cells = 0;
       mutable std::shared_ptr<ReferenceValues<dim>>                    values;
       mutable bool                                                     values_refused = false;
+      mutable std::vector<int>                                         local_ids, vector_ids;
     };
   } // namespace MechanicsAssembly
 } // namespace anvil
