@@ -186,6 +186,7 @@ namespace anvil
     committed.clear();
     trials.clear();
     allowed.clear();
+    search_cache.reset();
     grew = true;
   }
 
@@ -231,36 +232,6 @@ namespace anvil
       return false;
     // Self-contact: not the node's own surface next to it (self_contact.h).
     return !pairs[p].self || neighbourhood[p].may_touch(node, face, x);
-  }
-
-  template <int dim>
-  void ContactProblem<dim>::candidate_faces(
-    const Surface &master, const std::vector<Point<dim>> &x, const double margin,
-    const std::vector<unsigned int> &slaves,
-    std::map<unsigned int, std::vector<unsigned int>> &candidates) const
-  {
-    namespace bgi = boost::geometry::index;
-    std::vector<std::pair<BoundingBox<dim>, unsigned int>> boxes;
-    boxes.reserve(master.faces.size());
-    for (const auto f : master.faces)
-      {
-        std::vector<Point<dim>> corners;
-        for (const auto n : faces[f].nodes)
-          corners.push_back(x[n]);
-        BoundingBox<dim> box(corners);
-        box.extend(margin);
-        boxes.emplace_back(box, f);
-      }
-    const auto tree = pack_rtree(boxes);
-    for (const auto s : slaves)
-      {
-        std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
-        tree.query(bgi::intersects(x[s]), std::back_inserter(hits));
-        auto &list = candidates[s];
-        for (const auto &h : hits)
-          list.push_back(h.second);
-        std::sort(list.begin(), list.end());
-      }
   }
 
   template <int dim>

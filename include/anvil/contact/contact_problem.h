@@ -315,6 +315,10 @@ namespace anvil
     void   candidate_faces(const Surface &master, const std::vector<dealii::Point<dim>> &x,
                            double margin, const std::vector<unsigned int> &slaves,
                            std::map<unsigned int, std::vector<unsigned int>> &candidates) const;
+    /// The R-tree of each master side and margin, kept while its nodes move less
+    /// than its slack (contact_problem.cc); reset by setup().
+    struct SearchCache;
+    mutable std::shared_ptr<SearchCache> search_cache;
 
     MPI_Comm                            mpi_communicator = MPI_COMM_WORLD;
     std::vector<Pair>                   pairs;
