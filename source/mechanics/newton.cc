@@ -242,7 +242,14 @@ namespace anvil
             assembled = false;
           }
         else
-          result.line_search_steps.push_back(line_search(du, full_step, time_new, assembled));
+          {
+            // Far from convergence (the pre-quadratic iterations of yielding
+            // hinges, whose plastic tangent overshoots the points that unload)
+            // the scene may ask for a stricter search; near it s(α) is noise.
+            const double bound = r > 0.1 * result.residuals.front() ?
+                                   parameters.line_search_far_bound : 0.8;
+            result.line_search_steps.push_back(line_search(du, full_step, time_new, assembled, bound));
+          }
         residual_only =
           (residual_ok || likely_converged || (it == 0 && one_update_expected)) && !assembled;
       }
@@ -330,13 +337,13 @@ namespace anvil
   template <int dim>
   double MechanicalProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &du,
                                             const bool full_step, const double time_new,
-                                            bool &assembled)
+                                            bool &assembled, const double bound)
   {
     // Line search on the energy norm s(α) = δu · R(u + α δu) (Crisfield):
     // the residual norm itself grows in the first iterations of large
     // rotations although the step is good, so it is a poor merit function.
-    // A full step is kept unless |s(1)| > 0.8 |s(0)| or an element inverts;
-    // then α follows the secant root of s, within [0.1, 1].
+    // A full step is kept unless |s(1)| > bound |s(0)| (0.8 by default) or an
+    // element inverts; then α follows the secant root of s, within [0.1, 1].
     // The full step is tried with the matrix: it is kept far more often than
     // not, and then the next iteration needs K and R at exactly this state.
     const TrilinosWrappers::MPI::Vector u_start = owned_solution;
@@ -364,7 +371,7 @@ namespace anvil
             alpha *= 0.5;
             continue;
           }
-        if (std::abs(s1) <= 0.8 * std::abs(s0))
+        if (std::abs(s1) <= bound * std::abs(s0))
           break;
         // Secant root of s between (0, s0) and (α, s1). If s has not changed
         // sign and grows in magnitude the root lies beyond α: keep α.
@@ -436,7 +443,7 @@ namespace anvil
   template bool   MechanicalProblem<dim>::predict(double, double, bool, bool *);                 \
   template void   MechanicalProblem<dim>::build_predictor_constraints(double, double);          \
   template double MechanicalProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &,     \
-                                                      bool, double, bool &);                     \
+                                                      bool, double, bool &, double);             \
   template void   MechanicalProblem<dim>::revert_step();                                          \
   template bool   MechanicalProblem<dim>::begin_step(double, double);                            \
   template bool   MechanicalProblem<dim>::predictor_update(unsigned int &);                      \

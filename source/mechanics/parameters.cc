@@ -80,6 +80,13 @@ namespace anvil
                       "step (0: only the relative test and the round-off floor).");
     prm.declare_entry("Line search", "true", Patterns::Bool(),
                       "Backtrack (halve the Newton update, up to 5 times) while the residual grows.");
+    prm.declare_entry("Line search bound far from convergence", "0.8", Patterns::Double(0, 1),
+                      "The line search keeps a step length α when |s(α)| <= b |s(0)|, s(α) = δu · "
+                      "R(u + α δu) (Crisfield's energy norm); b = 0.8 always near convergence. While "
+                      "|R| > 0.1 |R_0| of the step this b applies instead: 0.1 cuts the overshooting "
+                      "updates of plastic hinges (tube_impact.prm); it costs iterations on elastic "
+                      "large rotations, whose first residuals grow although the full step is good "
+                      "(dimensionless, (0, 1]).");
     prm.leave_subsection();
     prm.enter_subsection("Linear solver");
     prm.declare_entry("Type", "automatic", Patterns::Selection("automatic|direct|iterative"),
@@ -166,6 +173,9 @@ namespace anvil
     displacement_tolerance      = prm.get_double("Displacement tolerance");
     absolute_displacement_tolerance = prm.get_double("Absolute displacement tolerance");
     line_search                 = prm.get_bool("Line search");
+    line_search_far_bound       = prm.get_double("Line search bound far from convergence");
+    AssertThrow(line_search_far_bound > 0,
+                ExcMessage("Mechanics/Newton/Line search bound far from convergence must be > 0"));
     check_tangent               = prm.get_bool("Check tangent");
     extrapolate                 = prm.get_bool("Extrapolate");
     prm.leave_subsection();

@@ -86,6 +86,7 @@ namespace anvil
       double       displacement_tolerance       = 1e-8;
       double       absolute_displacement_tolerance = 0;
       bool         line_search                  = true;
+      double       line_search_far_bound        = 0.8; // |s(α)| <= it |s(0)| while |R| > 0.1 |R_0|
       std::string  linear_solver                = "automatic";
       double       linear_tolerance             = 1e-10;
       unsigned int linear_max_iterations        = 1000;
@@ -320,8 +321,9 @@ namespace anvil
     /// Step length α of the Newton update @p du (Crisfield's energy line
     /// search); leaves the solution at u + α du. @p full_step: α = 1.
     /// @p assembled: set true if K and R are left assembled at that solution.
+    /// @p bound: α = 1 is kept when |s(1)| <= bound |s(0)|, else searched to it.
     double line_search(const dealii::TrilinosWrappers::MPI::Vector &du, bool full_step,
-                       double time_new, bool &assembled);
+                       double time_new, bool &assembled, double bound);
     unsigned int solve_linear_system(dealii::TrilinosWrappers::MPI::Vector &du);
     double       residual_norm() const;
     /// The smallest residual the digits of u and of F = I + ∇u can resolve,
