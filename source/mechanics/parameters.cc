@@ -81,12 +81,12 @@ namespace anvil
     prm.declare_entry("Line search", "true", Patterns::Bool(),
                       "Backtrack (halve the Newton update, up to 5 times) while the residual grows.");
     prm.declare_entry("Line search bound far from convergence", "0.8", Patterns::Double(0, 1),
-                      "The line search keeps a step length α when |s(α)| <= b |s(0)|, s(α) = δu · "
-                      "R(u + α δu) (Crisfield's energy norm); b = 0.8 always near convergence. While "
-                      "|R| > 0.1 |R_0| of the step this b applies instead: 0.1 cuts the overshooting "
-                      "updates of plastic hinges (tube_impact.prm); it costs iterations on elastic "
-                      "large rotations, whose first residuals grow although the full step is good "
-                      "(dimensionless, (0, 1]).");
+                      "b while |R| > 0.1 |R_0| of the step: the line search keeps a step length α "
+                      "when |s(α)| <= b |s(0)|, s(α) = δu · R(u + α δu) (Crisfield's energy norm); "
+                      "nearer convergence b = 0.8. 0.1 cuts the overshooting updates of plastic "
+                      "hinges (tube_impact.prm); it costs iterations on elastic large rotations, "
+                      "whose first residuals grow although the full step is good (dimensionless, "
+                      "(0, 1]).");
     prm.leave_subsection();
     prm.enter_subsection("Linear solver");
     prm.declare_entry("Type", "automatic", Patterns::Selection("automatic|direct|iterative"),
