@@ -75,6 +75,7 @@ namespace anvil
       PointData<std::shared_ptr<MaterialPoint>> *points                   = nullptr;
       PointData<double>                         *heat_sources             = nullptr;
       PointData<double>                         *thermoelastic_sources    = nullptr;
+      PointData<double>                         *plastic_work_rates       = nullptr; // Ẇirr, the audit's
       PointData<double>                         *material_temperature     = nullptr;
       const PointData<double>                   *material_temperature_old = nullptr;
 
@@ -177,9 +178,9 @@ namespace anvil
       std::vector<dealii::types::global_dof_index> dof_indices;
       unsigned int cell_index = 0; // the cell's active_cell_index()
 
-      /// Per point, the energy audit's terms of the step (AuditTerm; summed by
-      /// the copier point by point, in cell order: the same sums on any
-      /// number of threads).
+      /// Per point, the energy audit's terms of the step (AuditTerm; filled
+      /// by MaterialPointUpdate::audit() at commit, summed point by point in
+      /// cell order).
       std::vector<std::array<double, n_audit_terms>> audit;
       double              max_plastic_increment = 0;
 

@@ -92,6 +92,9 @@ namespace anvil
         , f_bar(*context.formulation)
       {}
       bool update(const CellIterator<dim> &cell, ScratchData<dim> &scratch, CopyData &copy) const;
+      /// The energy audit's terms of every point of @p cell (copy.audit) at the
+      /// state of the last update() (the same u, scratch's dof values).
+      void audit(const CellIterator<dim> &cell, ScratchData<dim> &scratch, CopyData &copy) const;
 
     private:
       /// The energy audit's terms of point @p q over the step (AuditTerm), after its update
