@@ -45,6 +45,7 @@ namespace anvil
     c.heat_sources          = &heat_sources;
     c.thermoelastic_sources = &thermoelastic_sources;
     c.plastic_work_rates    = &plastic_work_rates;
+    c.node_masses           = &node_masses;
     c.material_temperature  = &material_temperature;
     c.material_temperature_old = &material_temperature_old;
     return c;
@@ -146,7 +147,7 @@ namespace anvil
       if (context.body_force)
         body_force.assemble(scratch, copy);
       if (dynamic)
-        inertia.mass(scratch);
+        inertia.mass(cell, scratch);
       if (boundary_conditions.has_pressure())
         follower_pressure.assemble(cell, scratch, copy);
       for (unsigned int i = 0; i < copy.rhs.size(); ++i)

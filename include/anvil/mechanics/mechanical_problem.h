@@ -398,6 +398,7 @@ namespace anvil
     PointData<double>                           heat_sources; // per point, last assembly
     PointData<double>                           thermoelastic_sources;
     PointData<double>                           plastic_work_rates; // Ẇirr per point, last assembly
+    PointData<double>                           node_masses; // dynamics: per cell (Context::node_masses)
     TemperatureField                            temperature_field;
     bool                                        adiabatic_split = false;
     // The temperature each point ended its last update at (current and committed).
