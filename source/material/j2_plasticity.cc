@@ -98,15 +98,7 @@ namespace anvil
             // (adiabatic_temperature_derivative).
             const SymmetricTensor<2, 3> &df_de = adiabatic_strain_derivative,
                                         &df_ds = adiabatic_stress_derivative;
-            const SymmetricTensor<2, 3> saved_stress = current;
-            const double                saved_eps    = eps_c;
-            const double                h            = 1e-7 * (1 + std::abs(increment.temperature));
-            MaterialResponse            shifted;
-            compute(increment, increment.temperature + x1 + h,
-                    increment.temperature_increment + x1 + h, request_stress, shifted, rotated);
-            current = saved_stress, eps_c = saved_eps;
-            const double df_dx =
-              (shifted.adiabatic_temperature_increment - (x1 + f1)) / h; // f(x1) = x1 + f1
+            const double                 df_dx = adiabatic_temperature_derivative;
             const double                amplification = 1 / (1 - df_dx);
             const SymmetricTensor<2, 3> &dsigma_dT = response.stress_temperature_derivative;
             add_outer_product(response.tangent, amplification, dsigma_dT, df_de);
