@@ -34,8 +34,6 @@ namespace anvil
 
   namespace
   {
-    using namespace j2_tangent;
-
     class J2Point : public MaterialPoint
     {
     public:
@@ -70,11 +68,10 @@ namespace anvil
         // first residual is already small and the secant needs fewer return
         // maps than from 0.
         double x0 = 0, f0 = 0, x1 = adiabatic_guess, f1 = 0;
-        State  state;
         for (unsigned int it = 0; it < 50; ++it)
           {
             compute(increment, increment.temperature + x1, increment.temperature_increment + x1,
-                    iterate, response, rotated, state);
+                    iterate, response, rotated);
             f1 = response.adiabatic_temperature_increment - x1;
             if (std::abs(f1) <= 1e-12 * (1 + std::abs(x1)))
               break;
@@ -85,17 +82,17 @@ namespace anvil
             if (it == 49)
               throw MaterialPointError("the adiabatic temperature change did not converge");
           }
-        // The tangent at the converged x1: the last iterate's return map was at x1.
         if (tangent)
-          finish(increment, inner, state, response);
+          compute(increment, increment.temperature + x1, increment.temperature_increment + x1,
+                  inner, response, rotated);
         response.adiabatic_temperature_increment = x1;
         adiabatic_guess                          = x1;
         if (tangent)
           {
             // Consistent tangent of the adiabatic update: with x = f(Δε, σ̃ₙ, x),
             //   dx/dΔε = ∂f/∂Δε / (1 − ∂f/∂x),  dσ/dΔε = C + ∂σ/∂T ⊗ dx/dΔε
-            // (and likewise for σ̃ₙ); ∂f/∂x in closed form from finish()
-            // (adiabatic_temperature_derivative).
+            // (and likewise for σ̃ₙ); ∂f/∂x in closed form from the tangent's
+            // compute (adiabatic_temperature_derivative).
             const SymmetricTensor<2, 3> &df_de = adiabatic_strain_derivative,
                                         &df_ds = adiabatic_stress_derivative;
             const double                 df_dx = adiabatic_temperature_derivative;
@@ -151,31 +148,8 @@ namespace anvil
       /// σ̃ₙ = ΔR σₙ ΔRᵀ (raw) and q_n = √(3/2)|dev σₙ| (once needed): an update's return maps share them.
       struct Rotated { double trial[6], q_old = -1; };
       Rotated rotate(const Tensor<2, 3> &R) const;
-      /// What the return map at one temperature leaves for its tangents (finish()).
-      struct State
-      {
-        double              T = 0, K = 0, G = 0, eth = 0, deth = 0, beta = 0;
-        double              de[6], tr_de = 0, n[6], norm_s = 0, q_trial = 0, dp = 0, H = 0;
-        HardeningLaw::Value Y, Y_start;
-        PerzynaLaw::Value   V;
-        PerzynaLaw::Rate    rate;
-        bool   linear = false; // the closed-form return of linear rate-independent hardening
-        double q_start = 0, q_end = 0, dwork_dq = 0, tr_rev = 0, rho_c = 1;
-        bool   from_yield = false; // the flow started at σᵥ(ε̄ₙ, T): q_start depends on T
-      };
-      /// The stress and heat sources at T (state: what finish() needs), then finish().
       void compute(const MaterialIncrement &inc, double T, double dT, MaterialRequest request,
-                   MaterialResponse &response, Rotated &rotated, State &state);
-      void compute(const MaterialIncrement &inc, double T, double dT, MaterialRequest request,
-                   MaterialResponse &response, Rotated &rotated)
-      {
-        State state;
-        compute(inc, T, dT, request, response, rotated, state);
-      }
-      /// The tangents, ∂σ/∂T and the adiabatic derivatives @p request asks for,
-      /// at the state of the last compute() (which left @p state).
-      void finish(const MaterialIncrement &inc, MaterialRequest request, State &state,
-                  MaterialResponse &response);
+                   MaterialResponse &response, Rotated &rotated);
       /// Δε̄ solving r(Δε̄) = q_tr − 3GΔε̄ − σᵥ(ε̄ₙ + Δε̄) − V(Δε̄) = 0 (0: the root
       /// is below working precision), with σᵥ and V at the returned Δε̄ in @p Y and
       /// @p V. @p Y0 is σᵥ at ε̄ₙ.
@@ -317,7 +291,6 @@ namespace anvil
       throw MaterialPointError("the return map did not converge in 200 iterations");
     }
 
-
     J2Point::Rotated J2Point::rotate(const Tensor<2, 3> &R) const
     { // σ̃ = ΔR σ_n ΔRᵀ; σ_n as a full matrix, A = ΔR σ_n, σ̃_ij = A_il ΔR_jl.
       static constexpr unsigned int row[6] = {0, 1, 2, 0, 0, 1}, col[6] = {0, 1, 2, 1, 2, 2};
@@ -336,16 +309,15 @@ namespace anvil
 
     void J2Point::compute(const MaterialIncrement &inc, const double T, const double dT,
                           const MaterialRequest request, MaterialResponse &response,
-                          Rotated &rotated, State &st)
+                          Rotated &rotated)
     {
-      const ElasticLaw &el = model.elastic;
-      st.T                 = T;
-      const double K = st.K = el.bulk_modulus(T);
-      const double G = st.G = el.shear_modulus(T);
+      const ElasticLaw &el   = model.elastic;
+      const double      K    = el.bulk_modulus(T);
+      const double      G    = el.shear_modulus(T);
       // Thermal strain over the step and its T-derivative (β(T), eq. 19).
-      const double eth = st.eth = el.thermal_strain(T, dT);
-      st.deth                   = el.thermal_strain_derivative(T, dT);
-      const double beta = st.beta = el.thermal_expansion(T);
+      const double      eth  = el.thermal_strain(T, dT);
+      const double      deth = el.thermal_strain_derivative(T, dT);
+      const double      beta = el.thermal_expansion(T);
       if (!(G > 0 && K > 0))
         throw MaterialPointError(
           "the elastic moduli are not positive at T = " + std::to_string(T) +
@@ -357,11 +329,11 @@ namespace anvil
       // on the raw components (00, 11, 22, 01, 02, 12).
       double trial[6]; std::copy(rotated.trial, rotated.trial + 6, trial);
       const double *dstrain = inc.strain_increment.begin_raw();
-      double       *de      = st.de;
+      double        de[6];
       for (unsigned int c = 0; c < 6; ++c)
         de[c] = dstrain[c] - (c < 3 ? eth : 0.);
-      const double tr_de = st.tr_de = de[0] + de[1] + de[2];
-      const double mean_de          = tr_de / 3;
+      const double tr_de   = de[0] + de[1] + de[2];
+      const double mean_de = tr_de / 3;
       for (unsigned int c = 0; c < 6; ++c)
         trial[c] += c < 3 ? K * tr_de + 2 * G * (de[c] - mean_de) : 2 * G * de[c];
       const double mean_trial = (trial[0] + trial[1] + trial[2]) / 3;
@@ -372,17 +344,12 @@ namespace anvil
                            2 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
       // |dev σ_tr| and q_tr = √(3/2)|dev σ_tr| only where the yield test can
       // pass: the square root is the longest latency of the elastic update.
-      double &norm_s = st.norm_s, &q_trial = st.q_trial;
-      norm_s = q_trial = 0;
+      double norm_s = 0, q_trial = 0;
 
-      double              &dp = st.dp, &H = st.H;
-      HardeningLaw::Value &Y = st.Y, &Y_start = st.Y_start;
-      PerzynaLaw::Value   &V = st.V;
-      dp = H = 0;
-      Y = Y_start = HardeningLaw::Value();
-      V           = PerzynaLaw::Value();
-      st.rate     = PerzynaLaw::Rate();
-      st.linear   = false;
+      double              dp = 0, H = 0;
+      HardeningLaw::Value Y, Y_start;
+      PerzynaLaw::Value   V;
+      PerzynaLaw::Rate    rate;
       response.return_iterations = 0;
       if (model.plastic)
         {
@@ -400,12 +367,11 @@ namespace anvil
             }
           if (q_trial > Y.stress)
             {
-              st.rate = model.viscosity.at(T, inc.time_step);
-              if (model.hardening->is_linear() && !st.rate.active() &&
+              rate = model.viscosity.at(T, inc.time_step);
+              if (model.hardening->is_linear() && !rate.active() &&
                   !model.johnson_cook_rate.active())
                 {
-                  // Linear hardening, rate-independent: r is linear in Δε̄ (σᵥ at
-                  // ε̄ₙ + Δε̄ by the slope; finish() evaluates it for ∂/∂T).
+                  // Linear hardening, rate-independent: r is linear in Δε̄.
                   const double h = Y_start.slope;
                   if (!(h >= 0))
                     {
@@ -415,19 +381,20 @@ namespace anvil
                     }
                   dp                         = (q_trial - Y_start.stress) / (3 * G + h);
                   response.return_iterations = 1;
-                  st.linear                  = true;
-                  Y.stress                   = Y_start.stress + h * dp;
+                  if (request & request_temperature_derivative)
+                    Y = model.hardening->evaluate(eps_n + dp, T);
+                  else
+                    Y.stress = Y_start.stress + h * dp;
                 }
               else
-                dp = return_map(q_trial, G, T, st.rate, Y_start, response.return_iterations, Y, V);
+                dp = return_map(q_trial, G, T, rate, Y_start, response.return_iterations, Y, V);
               H = Y.slope + V.derivative;
             }
         }
 
       // Radial return: σ = trial − √6 G Δε̄ n, n = s/|s|.
       // n enters only through Δε̄ > 0 terms (elastic: zero, as for |s| = 0).
-      double *n = st.n;
-      std::fill(n, n + 6, 0.);
+      double n[6] = {0, 0, 0, 0, 0, 0};
       if (dp > 0)
         {
           const double inv_norm = 1 / norm_s;
@@ -448,46 +415,6 @@ namespace anvil
       eps_c   = eps_n + dp;
       response.equivalent_plastic_strain = eps_c;
 
-      // Heat sources over the step (always cheap; needed by the adiabatic loop).
-      const double dt   = inc.time_step;
-      double       work = 0;
-      st.dwork_dq       = 0;
-      if (dp > 0)
-        {
-          // Ẇirr = σ̄ ε̄̇ (eq. 21) with σ̄ averaged over the step (exact for linear
-          // hardening); flow starts at the yield stress if the step began elastic.
-          const double q_end   = q_trial - 3 * G * dp;
-          const double q_old   = rotated.q_old >= 0 ? rotated.q_old :
-                                   (rotated.q_old = std::sqrt(1.5) * deviator(stress_n).norm());
-          const double q_start = std::max(q_old, Y_start.stress);
-          work                 = 0.5 * (q_start + q_end) * dp;
-          // d(work)/dq_trial with dΔε̄/dq_tr = 1/(3G + H), dq_end/dq_tr = H/(3G + H).
-          st.dwork_dq = 0.5 * (H * dp + q_start + q_end) / (3 * G + H);
-          st.q_start    = q_start;
-          st.q_end      = q_end;
-          st.from_yield = q_old < Y_start.stress;
-        }
-      // Reversible volume change that heats or cools (doc/thermodynamics.md):
-      // with c at constant stress, the stress-producing part tr(Δε − βΔT I);
-      // with c at constant volume (the seed's eq. 8 and 22), all of tr Δε.
-      const double tr_rev = st.tr_rev = el.capacity_at_constant_volume ? tr_de + 3 * eth : tr_de;
-      // Sources per current volume, capacity per reference volume (ρ₀c/J per current volume).
-      const double rho_c = st.rho_c = el.density * el.heat_capacity / inc.volume_ratio;
-      response.plastic_work_rate        = work / dt;
-      response.plastic_dissipation_rate = el.taylor_quinney * work / dt;
-      // Ẇthel = −3Kβ T tr(Δεᵉ)/Δt (plastic flow is isochoric), doc/thermodynamics.md.
-      response.thermoelastic_heating_rate = -3 * K * beta * T * tr_rev / dt;
-      response.adiabatic_temperature_increment =
-        (el.taylor_quinney * work - 3 * K * beta * T * tr_rev) / rho_c;
-      finish(inc, request, st, response);
-    }
-
-    void J2Point::finish(const MaterialIncrement &inc, const MaterialRequest request, State &st,
-                         MaterialResponse &response)
-    {
-      const ElasticLaw &el = model.elastic;
-      const double      T = st.T, K = st.K, G = st.G, dp = st.dp, H = st.H, q_trial = st.q_trial;
-      const double     *n = st.n;
       if (request & request_tangent)
         {
           double *C = response.tangent.begin_raw();
@@ -509,25 +436,19 @@ namespace anvil
             }
         }
 
-      // ∂q_tr/∂T, ∂Δε̄/∂T and ∂G/∂T (temperature derivative requested, Δε̄ > 0).
-      double dq = 0, ddp = 0, dG = 0;
       if (request & request_temperature_derivative)
         {
-          HardeningLaw::Value &Y = st.Y;
-          PerzynaLaw::Value   &V = st.V;
-          if (st.linear)
-            Y = model.hardening->evaluate(eps_n + dp, T); // ∂σᵥ/∂T at ε̄ₙ₊₁
           // ∂σ/∂T_{n+1} at fixed Δε and σ_n (T_n fixed, so ∂ΔT/∂T = 1).
           static const SymmetricTensor<2, 3> I = unit_symmetric_tensor<3>();
           SymmetricTensor<2, 3>              de_t, n_t;
           for (unsigned int c = 0; c < 6; ++c)
             {
-              de_t.access_raw_entry(c) = st.de[c];
+              de_t.access_raw_entry(c) = de[c];
               n_t.access_raw_entry(c)  = n[c];
             }
           const double                g = el.relative_modulus_derivative(T);
           const SymmetricTensor<2, 3> dtrial =
-            g * (K * st.tr_de * I + 2 * G * deviator(de_t)) - 3 * K * st.deth * I;
+            g * (K * tr_de * I + 2 * G * deviator(de_t)) - 3 * K * deth * I;
           SymmetricTensor<2, 3> ds = dtrial;
           if (dp > 0)
             {
@@ -535,17 +456,44 @@ namespace anvil
               V.temperature_derivative =
                 model.johnson_cook_rate.active() ?
                   (Y.stress > 0 ? V.stress / Y.stress * Y.temperature_derivative : 0.) :
-                  model.viscosity.temperature_derivative(st.rate, T, eps_c, dp, V.stress);
-              dG  = g * G;
-              dq  = std::sqrt(1.5) * (n_t * dtrial);
-              ddp = (dq - 3 * dG * dp - Y.temperature_derivative - V.temperature_derivative) /
-                    (3 * G + H);
-              const SymmetricTensor<2, 3> dn = (deviator(dtrial) - (n_t * dtrial) * n_t) / st.norm_s;
+                  model.viscosity.temperature_derivative(rate, T, eps_c, dp, V.stress);
+              const double dG  = g * G;
+              const double dq  = std::sqrt(1.5) * (n_t * dtrial);
+              const double ddp = (dq - 3 * dG * dp - Y.temperature_derivative -
+                                  V.temperature_derivative) / (3 * G + H);
+              const SymmetricTensor<2, 3> dn = (deviator(dtrial) - (n_t * dtrial) * n_t) / norm_s;
               ds -= std::sqrt(6.) * ((dG * dp + G * ddp) * n_t + G * dp * dn);
             }
           response.stress_temperature_derivative = ds;
         }
 
+      // Heat sources over the step (always cheap; needed by the adiabatic loop).
+      const double dt   = inc.time_step;
+      double       work = 0, dwork_dq = 0;
+      if (dp > 0)
+        {
+          // Ẇirr = σ̄ ε̄̇ (eq. 21) with σ̄ averaged over the step (exact for linear
+          // hardening); flow starts at the yield stress if the step began elastic.
+          const double q_end   = q_trial - 3 * G * dp;
+          const double q_old   = rotated.q_old >= 0 ? rotated.q_old :
+                                   (rotated.q_old = std::sqrt(1.5) * deviator(stress_n).norm());
+          const double q_start = std::max(q_old, Y_start.stress);
+          work                 = 0.5 * (q_start + q_end) * dp;
+          // d(work)/dq_trial with dΔε̄/dq_tr = 1/(3G + H), dq_end/dq_tr = H/(3G + H).
+          dwork_dq = 0.5 * (H * dp + q_start + q_end) / (3 * G + H);
+        }
+      // Reversible volume change that heats or cools (doc/thermodynamics.md):
+      // with c at constant stress, the stress-producing part tr(Δε − βΔT I);
+      // with c at constant volume (the seed's eq. 8 and 22), all of tr Δε.
+      const double tr_rev = el.capacity_at_constant_volume ? tr_de + 3 * eth : tr_de;
+      // Sources per current volume, capacity per reference volume (ρ₀c/J per current volume).
+      const double rho_c  = el.density * el.heat_capacity / inc.volume_ratio;
+      response.plastic_work_rate        = work / dt;
+      response.plastic_dissipation_rate = el.taylor_quinney * work / dt;
+      // Ẇthel = −3Kβ T tr(Δεᵉ)/Δt (plastic flow is isochoric), doc/thermodynamics.md.
+      response.thermoelastic_heating_rate = -3 * K * beta * T * tr_rev / dt;
+      response.adiabatic_temperature_increment =
+        (el.taylor_quinney * work - 3 * K * beta * T * tr_rev) / rho_c;
       if (inc.adiabatic && (request & request_tangent))
         {
           // Partial derivatives of ΔT_ad at fixed T: ∂q_tr/∂Δε = √6 G n,
@@ -553,26 +501,38 @@ namespace anvil
           SymmetricTensor<2, 3> n_t;
           for (unsigned int c = 0; c < 6; ++c)
             n_t.access_raw_entry(c) = n[c];
-          const double chi = el.taylor_quinney, beta = st.beta, rho_c = st.rho_c;
+          const double chi = el.taylor_quinney;
           adiabatic_strain_derivative =
-            (chi * st.dwork_dq * std::sqrt(6.) * G * n_t - 3 * K * beta * T * unit_symmetric_tensor<3>()) /
+            (chi * dwork_dq * std::sqrt(6.) * G * n_t - 3 * K * beta * T * unit_symmetric_tensor<3>()) /
             rho_c;
-          adiabatic_stress_derivative = (chi * st.dwork_dq * std::sqrt(1.5) / rho_c) * n_t;
-          // ∂ΔT_ad/∂T (the adiabatic tangent's request has ∂/∂T too): K' = gK,
-          // β'(T) (eq. 19), tr_rev' = −3 ∂Δε_th/∂T at constant stress, and the
-          // plastic work's through Δε̄ and q_end, and q_start = σᵥ(ε̄ₙ, T) if the
-          // step began elastic (the softened yield stress; eq. 35 for the linear law).
-          double dwork_dT = 0;
+          adiabatic_stress_derivative = (chi * dwork_dq * std::sqrt(1.5) / rho_c) * n_t;
+          // ∂ΔT_ad/∂T at fixed Δε, σ̃ₙ (the adiabatic tangent's request has ∂/∂T,
+          // so Y and V carry theirs): K' = gK, β'(T) (eq. 19), tr_rev' = −3
+          // ∂Δε_th/∂T at constant stress, and the plastic work's, through Δε̄,
+          // q_end and, if the step began elastic, q_start = σᵥ(ε̄ₙ, T) (the
+          // softened yield stress; eq. 35 for the linear law). Here, not in the
+          // ∂σ/∂T block: the other updates pay nothing for it.
+          const double g        = el.relative_modulus_derivative(T);
+          double       dwork_dT = 0;
           if (dp > 0)
             {
-              const double dq_end = dq - 3 * dG * dp - 3 * G * ddp;
-              const double dq_start = st.from_yield ? st.Y_start.temperature_derivative : 0.;
-              dwork_dT = 0.5 * (dq_start + dq_end) * dp + 0.5 * (st.q_start + st.q_end) * ddp;
+              // ∂q_tr/∂T = √(3/2) n : ∂σ_tr/∂T = √(3/2) 2G' n : Δεᵉ (n deviatoric).
+              double n_de = 0;
+              for (unsigned int c = 0; c < 6; ++c)
+                n_de += (c < 3 ? 1. : 2.) * n[c] * de[c];
+              const double dG       = g * G;
+              const double dq       = std::sqrt(1.5) * 2 * dG * n_de;
+              const double ddp      = (dq - 3 * dG * dp - Y.temperature_derivative -
+                                  V.temperature_derivative) / (3 * G + H);
+              const double q_end    = q_trial - 3 * G * dp;
+              const double q_start  = std::max(rotated.q_old, Y_start.stress);
+              const double dq_end   = dq - 3 * dG * dp - 3 * G * ddp;
+              const double dq_start = rotated.q_old < Y_start.stress ? Y_start.temperature_derivative : 0.;
+              dwork_dT = 0.5 * (dq_start + dq_end) * dp + 0.5 * (q_start + q_end) * ddp;
             }
-          const double dK      = el.relative_modulus_derivative(T) * K;
+          const double dK      = g * K;
           const double dbeta   = el.thermal_expansion_derivative(T);
-          const double dtr_rev = el.capacity_at_constant_volume ? 0. : -3 * st.deth;
-          const double tr_rev  = st.tr_rev;
+          const double dtr_rev = el.capacity_at_constant_volume ? 0. : -3 * deth;
           adiabatic_temperature_derivative =
             (chi * dwork_dT - 3 * ((dK * beta + K * dbeta) * T * tr_rev + K * beta * tr_rev +
                                    K * beta * T * dtr_rev)) /
