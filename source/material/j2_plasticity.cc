@@ -1,6 +1,8 @@
 #include <anvil/core/scene.h>
 #include <anvil/material/j2_plasticity.h>
 
+#include "j2_tangent.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -32,28 +34,6 @@ namespace anvil
 
   namespace
   {
-    /// C += s a⊗b on raw storage (deal.II's outer_product() and operator+= build
-    /// two 6x6 temporaries for it).
-    inline void add_outer_product(SymmetricTensor<4, 3> &C, const double s,
-                                  const SymmetricTensor<2, 3> &a, const SymmetricTensor<2, 3> &b)
-    {
-      double       *c  = C.begin_raw();
-      const double *ar = a.begin_raw(), *br = b.begin_raw();
-      for (unsigned int p = 0; p < 6; ++p)
-        for (unsigned int q = 0; q < 6; ++q)
-          c[6 * p + q] += s * (ar[p] * br[q]);
-    }
-
-    /// I_sym on raw storage: 1 on the normal, 1/2 on the shear diagonal.
-    inline void fill_identity(SymmetricTensor<4, 3> &S)
-    {
-      double *c = S.begin_raw();
-      for (unsigned int p = 0; p < 36; ++p)
-        c[p] = 0;
-      for (unsigned int p = 0; p < 6; ++p)
-        c[7 * p] = p < 3 ? 1. : 0.5;
-    }
-
     class J2Point : public MaterialPoint
     {
     public:
@@ -111,20 +91,11 @@ namespace anvil
           {
             // Consistent tangent of the adiabatic update: with x = f(Δε, σ̃ₙ, x),
             //   dx/dΔε = ∂f/∂Δε / (1 − ∂f/∂x),  dσ/dΔε = C + ∂σ/∂T ⊗ dx/dΔε
-            // (and likewise for σ̃ₙ). ∂f/∂x (every temperature dependence of
-            // the moduli, the yield stress and the viscosity) by a one-sided
-            // difference; the current state is kept.
-            const SymmetricTensor<2, 3> df_de = adiabatic_strain_derivative,
-                                        df_ds = adiabatic_stress_derivative;
-            const SymmetricTensor<2, 3> saved_stress = current;
-            const double                saved_eps    = eps_c;
-            const double                h            = 1e-7 * (1 + std::abs(increment.temperature));
-            MaterialResponse            shifted;
-            compute(increment, increment.temperature + x1 + h,
-                    increment.temperature_increment + x1 + h, request_stress, shifted, rotated);
-            current = saved_stress, eps_c = saved_eps;
-            const double df_dx =
-              (shifted.adiabatic_temperature_increment - (x1 + f1)) / h; // f(x1) = x1 + f1
+            // (and likewise for σ̃ₙ); ∂f/∂x in closed form from the tangent's
+            // compute (adiabatic_temperature_derivative).
+            const SymmetricTensor<2, 3> &df_de = adiabatic_strain_derivative,
+                                        &df_ds = adiabatic_stress_derivative;
+            const double                 df_dx = adiabatic_temperature_derivative;
             const double                amplification = 1 / (1 - df_dx);
             const SymmetricTensor<2, 3> &dsigma_dT = response.stress_temperature_derivative;
             add_outer_product(response.tangent, amplification, dsigma_dT, df_de);
@@ -196,6 +167,8 @@ namespace anvil
       double                eps_n = 0, eps_c = 0;
       // ∂ΔT_ad/∂Δε and ∂ΔT_ad/∂σ̃ₙ at fixed temperature (adiabatic tangent).
       SymmetricTensor<2, 3> adiabatic_strain_derivative, adiabatic_stress_derivative;
+      // ∂ΔT_ad/∂T at fixed Δε and σ̃ₙ (the fixed point's ∂f/∂x).
+      double adiabatic_temperature_derivative = 0;
       // The last ΔT_ad found: the start of the next fixed-point iteration
       // (a start only: the converged value does not depend on it beyond the
       // iteration's 1e-12 tolerance).
@@ -316,57 +289,6 @@ namespace anvil
           dp = next;
         }
       throw MaterialPointError("the return map did not converge in 200 iterations");
-    }
-
-    // The unrolled (raw) storage of SymmetricTensor<2,3> is 00, 11, 22, 01, 02, 12,
-    // that of SymmetricTensor<4,3> the 6x6 matrix of components C_{(ij)(kl)} in
-    // that order, row by row (deal.II's contractions weigh the off-diagonal
-    // pairs themselves). In that storage I_dev has 2/3, −1/3 in the normal
-    // block and 1/2 on the shear diagonal, δ⊗δ ones in the normal block, and
-    // I_sym 1, 1/2 on the diagonal.
-
-    /// C = K δ⊗δ + c_d I_dev (+ c_n n⊗n if @p with_n), raw storage.
-    template <bool with_n>
-    inline void fill_tangent(double *C, const double K, const double cd, const double cn,
-                             const double *n)
-    {
-      auto nn = [&](const unsigned int p, const unsigned int q) {
-        return with_n ? cn * n[p] * n[q] : 0.;
-      };
-      for (unsigned int p = 0; p < 3; ++p)
-        {
-          for (unsigned int q = 0; q < 3; ++q)
-            C[6 * p + q] = K + cd * ((p == q ? 1. : 0.) - 1. / 3) + nn(p, q);
-          for (unsigned int q = 3; q < 6; ++q)
-            C[6 * p + q] = nn(p, q);
-        }
-      for (unsigned int p = 3; p < 6; ++p)
-        {
-          for (unsigned int q = 0; q < 3; ++q)
-            C[6 * p + q] = nn(p, q);
-          for (unsigned int q = 3; q < 6; ++q)
-            C[6 * p + q] = (p == q ? 0.5 * cd : 0.) + nn(p, q);
-        }
-    }
-
-    /// S = I_sym − b n⊗n − a (I_dev − n⊗n) = I_sym − a I_dev + (a − b) n⊗n, raw storage.
-    inline void fill_sensitivity(double *S, const double a, const double b, const double *n)
-    {
-      const double c = a - b;
-      for (unsigned int p = 0; p < 3; ++p)
-        {
-          for (unsigned int q = 0; q < 3; ++q)
-            S[6 * p + q] = (p == q ? 1. - a * (2. / 3) : a * (1. / 3)) + c * n[p] * n[q];
-          for (unsigned int q = 3; q < 6; ++q)
-            S[6 * p + q] = c * n[p] * n[q];
-        }
-      for (unsigned int p = 3; p < 6; ++p)
-        {
-          for (unsigned int q = 0; q < 3; ++q)
-            S[6 * p + q] = c * n[p] * n[q];
-          for (unsigned int q = 3; q < 6; ++q)
-            S[6 * p + q] = (p == q ? 0.5 * (1 - a) : 0.) + c * n[p] * n[q];
-        }
     }
 
     J2Point::Rotated J2Point::rotate(const Tensor<2, 3> &R) const
@@ -584,6 +506,37 @@ namespace anvil
             (chi * dwork_dq * std::sqrt(6.) * G * n_t - 3 * K * beta * T * unit_symmetric_tensor<3>()) /
             rho_c;
           adiabatic_stress_derivative = (chi * dwork_dq * std::sqrt(1.5) / rho_c) * n_t;
+          // ∂ΔT_ad/∂T at fixed Δε, σ̃ₙ (the adiabatic tangent's request has ∂/∂T,
+          // so Y and V carry theirs): K' = gK, β'(T) (eq. 19), tr_rev' = −3
+          // ∂Δε_th/∂T at constant stress, and the plastic work's, through Δε̄,
+          // q_end and, if the step began elastic, q_start = σᵥ(ε̄ₙ, T) (the
+          // softened yield stress; eq. 35 for the linear law). Here, not in the
+          // ∂σ/∂T block: the other updates pay nothing for it.
+          const double g        = el.relative_modulus_derivative(T);
+          double       dwork_dT = 0;
+          if (dp > 0)
+            {
+              // ∂q_tr/∂T = √(3/2) n : ∂σ_tr/∂T = √(3/2) 2G' n : Δεᵉ (n deviatoric).
+              double n_de = 0;
+              for (unsigned int c = 0; c < 6; ++c)
+                n_de += (c < 3 ? 1. : 2.) * n[c] * de[c];
+              const double dG       = g * G;
+              const double dq       = std::sqrt(1.5) * 2 * dG * n_de;
+              const double ddp      = (dq - 3 * dG * dp - Y.temperature_derivative -
+                                  V.temperature_derivative) / (3 * G + H);
+              const double q_end    = q_trial - 3 * G * dp;
+              const double q_start  = std::max(rotated.q_old, Y_start.stress);
+              const double dq_end   = dq - 3 * dG * dp - 3 * G * ddp;
+              const double dq_start = rotated.q_old < Y_start.stress ? Y_start.temperature_derivative : 0.;
+              dwork_dT = 0.5 * (dq_start + dq_end) * dp + 0.5 * (q_start + q_end) * ddp;
+            }
+          const double dK      = g * K;
+          const double dbeta   = el.thermal_expansion_derivative(T);
+          const double dtr_rev = el.capacity_at_constant_volume ? 0. : -3 * deth;
+          adiabatic_temperature_derivative =
+            (chi * dwork_dT - 3 * ((dK * beta + K * dbeta) * T * tr_rev + K * beta * tr_rev +
+                                   K * beta * T * dtr_rev)) /
+            rho_c;
         }
     }
   } // namespace

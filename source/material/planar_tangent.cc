@@ -14,13 +14,17 @@ namespace anvil
     void add_contraction(const SymmetricTensor<4, 3> &T, const double (&d)[6],
                          const unsigned int (&comps)[n], SymmetricTensor<2, 3> &sigma)
     {
+      // The shear weight 2 on d once, not per row (× 2 is exact: the same sums).
+      double dw[n];
+      for (unsigned int i = 0; i < n; ++i)
+        dw[i] = d[comps[i]] * (comps[i] < 3 ? 1. : 2.);
       const double *t = T.begin_raw();
       double       *s = sigma.begin_raw();
       for (unsigned int p = 0; p < 6; ++p)
         {
           double v = 0;
-          for (const unsigned int q : comps)
-            v += t[6 * p + q] * d[q] * (q < 3 ? 1. : 2.);
+          for (unsigned int i = 0; i < n; ++i)
+            v += t[6 * p + comps[i]] * dw[i];
           s[p] += v;
         }
     }

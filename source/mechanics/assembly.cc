@@ -44,6 +44,8 @@ namespace anvil
     c.points                = &points;
     c.heat_sources          = &heat_sources;
     c.thermoelastic_sources = &thermoelastic_sources;
+    c.plastic_work_rates    = &plastic_work_rates;
+    c.node_masses           = &node_masses;
     c.material_temperature  = &material_temperature;
     c.material_temperature_old = &material_temperature_old;
     return c;
@@ -145,7 +147,7 @@ namespace anvil
       if (context.body_force)
         body_force.assemble(scratch, copy);
       if (dynamic)
-        inertia.mass(scratch);
+        inertia.mass(cell, scratch);
       if (boundary_conditions.has_pressure())
         follower_pressure.assemble(cell, scratch, copy);
       for (unsigned int i = 0; i < copy.rhs.size(); ++i)
@@ -159,7 +161,6 @@ namespace anvil
     // first cell that failed nothing more is added (the step is cut back).
     bool         failed  = false;
     unsigned int n_cells = 0;
-    step_audit.fill(0.);
     max_plastic_increment = 0;
     material_failure.clear();
     // A cell with no constrained dof and only owned rows adds its matrix by
@@ -206,10 +207,6 @@ namespace anvil
           material_failure = copy.failure;
           return;
         }
-      static_assert(MechanicsAssembly::n_audit_terms == 6, "step_audit holds every AuditTerm");
-      for (const auto &terms : copy.audit)
-        for (unsigned int k = 0; k < terms.size(); ++k)
-          step_audit[k] += terms[k];
       max_plastic_increment = std::max(max_plastic_increment, copy.max_plastic_increment);
       if (dynamic)
         inertia_force.add(copy.dof_indices, copy.inertia);
@@ -258,11 +255,6 @@ namespace anvil
         active_constraints->set_zero(old_part);
         system_rhs.add(-alpha_f, old_part);
       }
-    {
-      std::vector<double> sums(step_audit.begin(), step_audit.end());
-      Utilities::MPI::sum(sums, mpi_communicator, sums);
-      std::copy(sums.begin(), sums.end(), step_audit.begin());
-    }
     max_plastic_increment = Utilities::MPI::max(max_plastic_increment, mpi_communicator);
 
     const double seconds =
@@ -272,9 +264,47 @@ namespace anvil
     return Utilities::MPI::max(failed ? 1 : 0, mpi_communicator) == 0;
   }
 
+  template <int dim>
+  void MechanicalProblem<dim>::compute_step_audit()
+  {
+    // The cells in the assembly's order, the points' terms summed as its
+    // copier did: the sums of an audit computed at every evaluation.
+    using namespace MechanicsAssembly;
+    const Context<dim>             context = assembly_context(false, current_time);
+    const MaterialPointUpdate<dim> material_update(context);
+    const ReferenceValues<dim>    *reference = assembly_mapping->reference_values(
+      fe, quadrature, formulation->component, axisymmetric);
+    ScratchData<dim> scratch(*assembly_mapping, fe, quadrature, face_quadrature,
+                             update_gradients | update_JxW_values |
+                               (axisymmetric ? update_values | update_quadrature_points :
+                                               update_default));
+    CopyData copy(fe.n_dofs_per_cell(), quadrature.size());
+    static_assert(n_audit_terms == 6, "step_audit holds every AuditTerm");
+    step_audit.fill(0.);
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          scratch.reinit(cell, reference, formulation->component, formulation->f_bar, axisymmetric);
+          cell->get_dof_indices(copy.dof_indices);
+          for (unsigned int i = 0; i < copy.dof_indices.size(); ++i)
+            {
+              scratch.local_u[i]     = solution(copy.dof_indices[i]);
+              scratch.local_u_old[i] = old_solution(copy.dof_indices[i]);
+            }
+          material_update.audit(cell, scratch, copy);
+          for (const auto &terms : copy.audit)
+            for (unsigned int k = 0; k < terms.size(); ++k)
+              step_audit[k] += terms[k];
+        }
+    std::vector<double> sums(step_audit.begin(), step_audit.end());
+    Utilities::MPI::sum(sums, mpi_communicator, sums);
+    std::copy(sums.begin(), sums.end(), step_audit.begin());
+  }
+
 #define INSTANTIATE(dim)                                                                         \
   template bool MechanicalProblem<dim>::assemble(bool, double);                                 \
-  template MechanicsAssembly::Context<dim> MechanicalProblem<dim>::assembly_context(bool, double);
+  template MechanicsAssembly::Context<dim> MechanicalProblem<dim>::assembly_context(bool, double); \
+  template void MechanicalProblem<dim>::compute_step_audit();
   ANVIL_INSTANTIATE(INSTANTIATE)
 #undef INSTANTIATE
 } // namespace anvil

@@ -34,7 +34,6 @@ namespace anvil
       , G(fe.n_dofs_per_cell())
       , Gt(9 * fe.n_dofs_per_cell())
       , AGt(10 * fe.n_dofs_per_cell())
-      , cell_mass(fe.n_dofs_per_cell(), fe.n_dofs_per_cell())
       , face_grad_u(face_quadrature.size())
       , face_u(face_quadrature.size())
       , face_d_nda(fe.n_dofs_per_cell())

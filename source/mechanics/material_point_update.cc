@@ -200,12 +200,52 @@ namespace anvil
             (*context.material_temperature)(cell, q) =
               increment.temperature +
               (increment.adiabatic ? response.adiabatic_temperature_increment : 0.);
-          audit_terms(cell, model, j2, q, F, F_old, p, increment, scratch.audit_kin, copy.audit[q]);
+          // The energy audit needs the step's last evaluation only: its terms
+          // are computed once, at commit (audit()), from this and the state.
+          (*context.plastic_work_rates)(cell, q) = response.plastic_work_rate;
           copy.max_plastic_increment =
             std::max(copy.max_plastic_increment,
                      response.equivalent_plastic_strain - point.committed_equivalent_plastic_strain());
         }
       return true;
+    }
+
+    template <int dim>
+    void MaterialPointUpdate<dim>::audit(const CellIterator<dim> &cell, ScratchData<dim> &scratch,
+                                         CopyData &copy) const
+    {
+      // The kinematics of update() at the same u (bit for bit: the same
+      // operations), the stresses and plastic strains the points hold from
+      // that update, and the plastic work rate it stored.
+      const Formulation<dim>    &formulation = *context.formulation;
+      const ReferenceCellValues &ref         = scratch.cell;
+      if (formulation.f_bar)
+        f_bar.evaluate_centre(scratch);
+      auto                 cell_points = (*context.points)[cell];
+      const MaterialModel &model       = *context.materials->at(cell->material_id());
+      const auto          *j2          = dynamic_cast<const J2Model *>(&model);
+      MaterialIncrement    increment;
+      increment.temperature = context.reference_temperature; // without a temperature field
+      for (unsigned int q = 0; q < scratch.points.size(); ++q)
+        {
+          PointValues       &p     = scratch.points[q];
+          const double       R     = formulation.radius(ref, q);
+          const Tensor<2, 3> F     = formulation.deformation_gradient(ref, q, scratch.local_u, R);
+          const Tensor<2, 3> F_old = formulation.deformation_gradient(ref, q, scratch.local_u_old, R);
+          double             beta  = 1;
+          Tensor<2, 3>       F_mat = F, F_mat_old = F_old;
+          if (formulation.f_bar)
+            F_mat = f_bar.material_gradient(scratch, F, F_old, beta, F_mat_old);
+          p.kin.reinit(F_mat, F_mat_old, formulation.objective_rate, kinematics_planar_path);
+          MaterialPoint &point                  = *cell_points[q];
+          p.response.stress                     = point.stress();
+          p.response.equivalent_plastic_strain = point.equivalent_plastic_strain();
+          p.response.plastic_work_rate          = (*context.plastic_work_rates)(cell, q);
+          p.J     = determinant(F);
+          p.point = &point;
+          p.w     = formulation.weight(ref, q, R);
+          audit_terms(cell, model, j2, q, F, F_old, p, increment, scratch.audit_kin, copy.audit[q]);
+        }
     }
 
     ANVIL_INSTANTIATE_CLASS(MaterialPointUpdate)

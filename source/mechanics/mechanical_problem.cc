@@ -228,6 +228,10 @@ namespace anvil
     points.reinit(triangulation, n_q);
     heat_sources.reinit(triangulation, n_q, 0.);
     thermoelastic_sources.reinit(triangulation, n_q, 0.);
+    plastic_work_rates.reinit(triangulation, n_q, 0.);
+    if (parameters.dynamic)
+      node_masses.reinit(triangulation, formulation->n_nodes * formulation->n_nodes,
+                         std::numeric_limits<double>::quiet_NaN());
     material_temperature.reinit(triangulation, n_q, parameters.temperature);
     material_temperature_old = material_temperature;
     // One block of points per body (MaterialModel::create_points), handed

@@ -212,6 +212,7 @@ namespace anvil
     mean = contact_force;
     mean += contact_force_old;
     energy_audit.contact_work += 0.5 * (mean * du);
+    compute_step_audit();
     if (audit_omission)
       step_audit[audit_omission - 1] = 0; // a test-only injected error (ANVIL_AUDIT_OMIT)
     using namespace MechanicsAssembly;

@@ -41,6 +41,8 @@ namespace anvil
     /// T − ΔT to T by the trapezoidal rule, ½(β(T − ΔT) + β(T)) ΔT (exact for
     /// constant and linear β), with its derivative in T at fixed Tₙ = T − ΔT.
     double thermal_expansion(double T) const { return beta0 * beta_factor.value(T); }
+    /// dβ/dT.
+    double thermal_expansion_derivative(double T) const { return beta0 * beta_factor.derivative(T); }
     double thermal_strain(double T, double dT) const
     {
       if (beta_factor.is_constant())

@@ -75,8 +75,12 @@ namespace anvil
       PointData<std::shared_ptr<MaterialPoint>> *points                   = nullptr;
       PointData<double>                         *heat_sources             = nullptr;
       PointData<double>                         *thermoelastic_sources    = nullptr;
+      PointData<double>                         *plastic_work_rates       = nullptr; // Ẇirr, the audit's
       PointData<double>                         *material_temperature     = nullptr;
       const PointData<double>                   *material_temperature_old = nullptr;
+      /// Dynamics: per cell its node mass m_ij = Σ ρ₀ N_i N_j w (n_nodes² entries,
+      /// NaN until the first assembly computes it: ρ₀ dV is conserved).
+      PointData<double>                         *node_masses              = nullptr;
 
       bool has_temperature_field() const { return temperature_field && *temperature_field; }
     };
@@ -145,8 +149,8 @@ namespace anvil
       std::array<double, 9>                       T0;
       std::vector<double>                         Gt, AGt;
 
-      dealii::FullMatrix<double>          cell_mass; // inertia
-      std::vector<double>                 node_mass; // inertia: per node pair
+      std::vector<double>                 node_mass; // inertia: per node pair, work space
+      const double *cell_node_mass = nullptr; // inertia: the cell's kept node mass
       std::vector<dealii::Tensor<2, dim>> face_grad_u;
       std::vector<dealii::Tensor<1, dim>> face_u;
       std::vector<dealii::Tensor<1, dim>> face_d_nda; // follower pressure: δ(n da) per column
@@ -177,9 +181,9 @@ namespace anvil
       std::vector<dealii::types::global_dof_index> dof_indices;
       unsigned int cell_index = 0; // the cell's active_cell_index()
 
-      /// Per point, the energy audit's terms of the step (AuditTerm; summed by
-      /// the copier point by point, in cell order: the same sums on any
-      /// number of threads).
+      /// Per point, the energy audit's terms of the step (AuditTerm; filled
+      /// by MaterialPointUpdate::audit() at commit, summed point by point in
+      /// cell order).
       std::vector<std::array<double, n_audit_terms>> audit;
       double              max_plastic_increment = 0;
 

@@ -92,6 +92,9 @@ namespace anvil
         , f_bar(*context.formulation)
       {}
       bool update(const CellIterator<dim> &cell, ScratchData<dim> &scratch, CopyData &copy) const;
+      /// The energy audit's terms of every point of @p cell (copy.audit) at the
+      /// state of the last update() (the same u, scratch's dof values).
+      void audit(const CellIterator<dim> &cell, ScratchData<dim> &scratch, CopyData &copy) const;
 
     private:
       /// The energy audit's terms of point @p q over the step (AuditTerm), after its update
@@ -175,9 +178,10 @@ namespace anvil
     /**
      * Inertia, generalized-α (Chung & Hulbert 1993):
      *   M ã + (1 − α_f) R(u_{n+1}) + α_f R(u_n) = 0,  ã = (1 − α_m) a_{n+1} + α_m a_n,
-     * a_{n+1} from u_{n+1} by Newmark. mass() builds the cell's consistent
-     * mass (and a_{n+1}); assemble() combines it with the static part of the
-     * cell (α_f R(u_n) is added globally after the loop).
+     * a_{n+1} from u_{n+1} by Newmark. mass() finds the cell's consistent
+     * node mass (integrated at its first assembly, then kept) and a_{n+1};
+     * assemble() combines it with the static part of the cell (α_f R(u_n) is
+     * added globally after the loop).
      */
     template <int dim>
     class Inertia
@@ -186,7 +190,7 @@ namespace anvil
       explicit Inertia(const Context<dim> &context)
         : context(context)
       {}
-      void mass(ScratchData<dim> &scratch) const;
+      void mass(const CellIterator<dim> &cell, ScratchData<dim> &scratch) const;
       void assemble(ScratchData<dim> &scratch, CopyData &copy) const;
       /// a_{n+1} = (u − uₙ − Δt vₙ)/(βΔt²) − (½ − β)/β aₙ (Newmark).
       static double newmark_acceleration(double u, double u_old, double v_old, double a_old,

@@ -399,6 +399,8 @@ namespace anvil
     void add_remote_constraints(dealii::AffineConstraints<double> &c) const;
     PointData<double>                           heat_sources; // per point, last assembly
     PointData<double>                           thermoelastic_sources;
+    PointData<double>                           plastic_work_rates; // Ẇirr per point, last assembly
+    PointData<double>                           node_masses; // dynamics: per cell (Context::node_masses)
     TemperatureField                            temperature_field;
     bool                                        adiabatic_split = false;
     // The temperature each point ended its last update at (current and committed).
@@ -406,6 +408,9 @@ namespace anvil
     double max_plastic_increment = 0;
     /// The step's audit sums over the points (MechanicsAssembly::CopyData::audit).
     std::array<double, 6> step_audit{}; // MechanicsAssembly::n_audit_terms
+    /// step_audit from the state of the last assembly (commit_step(): the
+    /// audit needs the step's last evaluation only, so no assembly computes it).
+    void compute_step_audit();
     /// Test only (ANVIL_AUDIT_OMIT=term): 1 + the AuditTerm left out of the sums, 0 none.
     unsigned int audit_omission = 0;
     Energy energy_audit;

@@ -1,0 +1,89 @@
+// Raw-storage helpers of the J2 point's tangents (j2_plasticity.cc, its only
+// includer): filling and updating SymmetricTensor<4,3> entries without
+// deal.II's temporaries. Internal linkage (an unnamed namespace), as where
+// they came from: with external linkage GCC stops inlining the single-caller
+// fill_tangent/fill_sensitivity (+7 % instructions per J2 update).
+#pragma once
+
+#include <deal.II/base/symmetric_tensor.h>
+
+namespace anvil
+{
+  namespace
+  {
+    using dealii::SymmetricTensor;
+
+    /// C += s a⊗b on raw storage (deal.II's outer_product() and operator+= build
+    /// two 6x6 temporaries for it).
+    inline void add_outer_product(SymmetricTensor<4, 3> &C, const double s,
+                                  const SymmetricTensor<2, 3> &a, const SymmetricTensor<2, 3> &b)
+    {
+      double       *c  = C.begin_raw();
+      const double *ar = a.begin_raw(), *br = b.begin_raw();
+      for (unsigned int p = 0; p < 6; ++p)
+        for (unsigned int q = 0; q < 6; ++q)
+          c[6 * p + q] += s * (ar[p] * br[q]);
+    }
+
+    /// I_sym on raw storage: 1 on the normal, 1/2 on the shear diagonal.
+    inline void fill_identity(SymmetricTensor<4, 3> &S)
+    {
+      double *c = S.begin_raw();
+      for (unsigned int p = 0; p < 36; ++p)
+        c[p] = 0;
+      for (unsigned int p = 0; p < 6; ++p)
+        c[7 * p] = p < 3 ? 1. : 0.5;
+    }
+
+    // The unrolled (raw) storage of SymmetricTensor<2,3> is 00, 11, 22, 01, 02, 12,
+    // that of SymmetricTensor<4,3> the 6x6 matrix of components C_{(ij)(kl)} in
+    // that order, row by row (deal.II's contractions weigh the off-diagonal
+    // pairs themselves). In that storage I_dev has 2/3, −1/3 in the normal
+    // block and 1/2 on the shear diagonal, δ⊗δ ones in the normal block, and
+    // I_sym 1, 1/2 on the diagonal.
+
+    /// C = K δ⊗δ + c_d I_dev (+ c_n n⊗n if @p with_n), raw storage.
+    template <bool with_n>
+    inline void fill_tangent(double *C, const double K, const double cd, const double cn,
+                             const double *n)
+    {
+      auto nn = [&](const unsigned int p, const unsigned int q) {
+        return with_n ? cn * n[p] * n[q] : 0.;
+      };
+      for (unsigned int p = 0; p < 3; ++p)
+        {
+          for (unsigned int q = 0; q < 3; ++q)
+            C[6 * p + q] = K + cd * ((p == q ? 1. : 0.) - 1. / 3) + nn(p, q);
+          for (unsigned int q = 3; q < 6; ++q)
+            C[6 * p + q] = nn(p, q);
+        }
+      for (unsigned int p = 3; p < 6; ++p)
+        {
+          for (unsigned int q = 0; q < 3; ++q)
+            C[6 * p + q] = nn(p, q);
+          for (unsigned int q = 3; q < 6; ++q)
+            C[6 * p + q] = (p == q ? 0.5 * cd : 0.) + nn(p, q);
+        }
+    }
+
+    /// S = I_sym − b n⊗n − a (I_dev − n⊗n) = I_sym − a I_dev + (a − b) n⊗n, raw storage.
+    inline void fill_sensitivity(double *S, const double a, const double b, const double *n)
+    {
+      const double c = a - b;
+      for (unsigned int p = 0; p < 3; ++p)
+        {
+          for (unsigned int q = 0; q < 3; ++q)
+            S[6 * p + q] = (p == q ? 1. - a * (2. / 3) : a * (1. / 3)) + c * n[p] * n[q];
+          for (unsigned int q = 3; q < 6; ++q)
+            S[6 * p + q] = c * n[p] * n[q];
+        }
+      for (unsigned int p = 3; p < 6; ++p)
+        {
+          for (unsigned int q = 0; q < 3; ++q)
+            S[6 * p + q] = c * n[p] * n[q];
+          for (unsigned int q = 3; q < 6; ++q)
+            S[6 * p + q] = (p == q ? 0.5 * (1 - a) : 0.) + c * n[p] * n[q];
+        }
+    }
+  } // namespace
+} // namespace anvil
