@@ -216,6 +216,12 @@ namespace anvil
       if (pos[0] == -2)
         {
           const auto find_all = [&] {
+            // The cell's local column numbers once, then each row searched.
+            std::vector<int> column(n_dofs);
+            for (unsigned int j = 0; j < n_dofs; ++j)
+              if ((column[j] = matrix.LCID(static_cast<TrilinosWrappers::types::int_type>(
+                     copy.dof_indices[j]))) < 0)
+                return false;
             for (unsigned int i = 0; i < n_dofs; ++i)
               {
                 const int row =
@@ -226,10 +232,8 @@ namespace anvil
                 const int *const end   = row_columns + row_start[row + 1];
                 for (unsigned int j = 0; j < n_dofs; ++j)
                   {
-                    const int column = matrix.LCID(
-                      static_cast<TrilinosWrappers::types::int_type>(copy.dof_indices[j]));
-                    const int *const at = std::find(begin, end, column);
-                    if (column < 0 || at == end)
+                    const int *const at = std::find(begin, end, column[j]);
+                    if (at == end)
                       return false;
                     pos[i * n_dofs + j] = at - row_columns;
                   }

@@ -10,12 +10,10 @@
 // the last printed digit; the factorisations cost 25 % less.
 //
 // On one process the matrix goes to KLU directly (no Amesos): the analysis is
-// then kept across new matrix objects (a contact pattern made anew) while
-// their pattern fits in the analysed one, whose entries are the union of the
-// patterns seen since the last analysis (the missing ones factored as zeros;
-// re-analysed from the current pattern when the union holds 25 % more
-// entries than it). Where the pattern is the analysed one, KLU gets the same
-// arrays Amesos_Klu gives it, and the same calls: the same bits.
+// then kept across new matrix objects (a contact pattern made anew) whose
+// pattern fits in the analysed one (the missing entries factored as zeros).
+// Where the pattern is the analysed one, KLU gets the same arrays Amesos_Klu
+// gives it, and the same calls: the same bits.
 //
 // Old pivots can be poor for new values without the condition estimate
 // noticing (growth in L). So after a solve with reused pivots the normwise
