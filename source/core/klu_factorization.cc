@@ -10,10 +10,13 @@
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
 
+#include <trilinos_klu_decl.h>
+
 #include <anvil/core/klu_factorization.h>
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace anvil
 {
@@ -42,6 +45,56 @@ namespace anvil
     }
   } // namespace
 
+  /// KLU's objects and the analysed pattern: KLU reads the rows of A as the
+  /// columns of Aᵀ (Amesos_Klu does the same and solves with tsolve).
+  struct KluFactorization::Direct
+  {
+    Direct() { trilinos_klu_defaults(&common); }
+    ~Direct() { free(); }
+    void free()
+    {
+      if (numeric)
+        trilinos_klu_free_numeric(&numeric, &common);
+      if (symbolic)
+        trilinos_klu_free_symbolic(&symbolic, &common);
+    }
+
+    trilinos_klu_common    common;
+    trilinos_klu_symbolic *symbolic = nullptr;
+    trilinos_klu_numeric  *numeric  = nullptr;
+    int                    n        = 0;
+    std::vector<int>       Ap, Ai; // the analysed pattern, rows sorted
+    /// The matrix's k-th entry sits at Ai[position[k]]; empty: the matrix's
+    /// pattern is the analysed one (its arrays are given to KLU as they are).
+    std::vector<int>    position;
+    std::vector<double> values; // the matrix on the analysed pattern
+  };
+
+  namespace
+  {
+    /// Where each entry of the pattern (offsets, columns) sits in (Ap, Ai),
+    /// false if one is missing. Rows sorted in both.
+    bool find_positions(const int n, const int *offsets, const int *columns,
+                        const std::vector<int> &Ap, const std::vector<int> &Ai,
+                        std::vector<int> &position)
+    {
+      position.resize(offsets[n]);
+      for (int row = 0; row < n; ++row)
+        {
+          int at = Ap[row];
+          for (int k = offsets[row]; k < offsets[row + 1]; ++k)
+            {
+              while (at < Ap[row + 1] && Ai[at] < columns[k])
+                ++at;
+              if (at == Ap[row + 1] || Ai[at] != columns[k])
+                return false;
+              position[k] = at++;
+            }
+        }
+      return true;
+    }
+  } // namespace
+
   KluFactorization::KluFactorization(const bool reuse_pivots)
     : reuse_pivots(reuse_pivots)
   {}
@@ -54,6 +107,103 @@ namespace anvil
     matrix        = nullptr;
     nonzeros      = -1;
     pivots_reused = false;
+  }
+
+  bool KluFactorization::factorize_direct(const Epetra_CrsMatrix &A)
+  {
+    int    *offsets = nullptr, *columns = nullptr;
+    double *entries = nullptr;
+    if (A.Comm().NumProc() != 1 || A.ExtractCrsDataPointers(offsets, columns, entries) != 0)
+      return false;
+    const int n = A.NumMyRows();
+    if (&A != matrix || A.NumMyNonzeros() != nonzeros)
+      {
+        // Local columns are rows only if the column map is the row map; the
+        // union and the positions need sorted rows (FillComplete sorts them).
+        if (!A.ColMap().SameAs(A.RowMap()) || !A.DomainMap().SameAs(A.RowMap()) ||
+            !A.RangeMap().SameAs(A.RowMap()))
+          return false;
+        for (int row = 0; row < n; ++row)
+          for (int k = offsets[row] + 1; k < offsets[row + 1]; ++k)
+            if (columns[k - 1] >= columns[k])
+              return false;
+        if (!direct)
+          direct = std::make_unique<Direct>();
+        Direct    &d    = *direct;
+        const bool kept = d.symbolic && d.n == n &&
+                          find_positions(n, offsets, columns, d.Ap, d.Ai, d.position);
+        if (kept)
+          ++analyses_kept;
+        else
+          {
+            // The matrix's own pattern. (The union with the analysed one was
+            // tried: on two_blocks the sliding contact brings new entries at
+            // nearly every step, so it was analysed as often, with more fill:
+            // +14 % factorisation instructions.)
+            d.free();
+            d.n = n;
+            d.Ap.assign(offsets, offsets + n + 1);
+            d.Ai.assign(columns, columns + offsets[n]);
+            trilinos_klu_defaults(&d.common);
+            d.symbolic = trilinos_klu_analyze(n, d.Ap.data(), d.Ai.data(), &d.common);
+            AssertThrow(d.symbolic && d.common.status == TRILINOS_KLU_OK,
+                        ExcMessage("KLU: the matrix is structurally singular"));
+            ++symbolic_factorizations;
+            AssertThrow(find_positions(n, offsets, columns, d.Ap, d.Ai, d.position),
+                        ExcInternalError());
+          }
+        if (d.position.size() == d.Ai.size())
+          d.position.clear(); // the same pattern: the matrix's arrays as they are
+        matrix   = &A;
+        nonzeros = A.NumMyNonzeros();
+      }
+
+    Direct       &d = *direct;
+    const double *Ax = entries;
+    if (!d.position.empty())
+      {
+        d.values.assign(d.Ai.size(), 0.);
+        for (std::size_t k = 0; k < d.position.size(); ++k)
+          d.values[d.position[k]] = entries[k];
+        Ax = d.values.data();
+      }
+    // Amesos_Klu's numeric factorisation: refactor with the last pivots,
+    // accepted if min|u_ii| / max|u_ii| > 1e-12, else factor with pivoting
+    // (no scaling: Amesos's default, scale 0; −1 is the same factorisation
+    // without klu_scale's pass that checks the input for invalid entries,
+    // which a matrix from FillComplete cannot have).
+    d.common.scale   = -1;
+    bool pivoting    = true;
+    int *Ap          = d.Ap.data();
+    int *Ai          = d.position.empty() ? columns : d.Ai.data();
+    auto *values     = const_cast<double *>(Ax);
+    if (reuse_pivots && d.numeric &&
+        trilinos_klu_refactor(Ap, Ai, values, d.symbolic, d.numeric, &d.common) == 1 &&
+        d.common.status == TRILINOS_KLU_OK)
+      {
+        trilinos_klu_rcond(d.symbolic, d.numeric, &d.common);
+        pivoting = !(d.common.rcond > 1e-12);
+      }
+    if (pivoting)
+      {
+        if (d.numeric)
+          trilinos_klu_free_numeric(&d.numeric, &d.common);
+        d.numeric = trilinos_klu_factor(Ap, Ai, values, d.symbolic, &d.common);
+        AssertThrow(d.numeric && d.common.status == TRILINOS_KLU_OK,
+                    ExcMessage("KLU: the matrix is numerically singular"));
+      }
+    ++numeric_factorizations;
+    pivots_reused = !pivoting;
+    matrix_norm   = pivots_reused ? infinity_norm(A) : 0;
+    return true;
+  }
+
+  void KluFactorization::solve_direct(double *x, const double *b)
+  {
+    Direct &d = *direct;
+    std::copy(b, b + d.n, x);
+    const int ok = trilinos_klu_tsolve(d.symbolic, d.numeric, d.n, 1, x, &d.common);
+    AssertThrow(ok == 1, ExcMessage("KLU: solve failed"));
   }
 
   void KluFactorization::numeric_factorization(const bool reuse)
@@ -72,6 +222,9 @@ namespace anvil
   void KluFactorization::factorize(const TrilinosWrappers::SparseMatrix &A)
   {
     const Epetra_CrsMatrix &epetra = A.trilinos_matrix();
+    if (!solver && factorize_direct(epetra))
+      return;
+    direct.reset();
     // Another object (a reinit, a deep copy_from) or another number of
     // entries: the analysis no longer describes the matrix.
     if (solver && (&epetra != matrix || epetra.NumGlobalNonzeros64() != nonzeros))
@@ -97,11 +250,17 @@ namespace anvil
 
   void KluFactorization::solve(TrilinosWrappers::MPI::Vector &x, const TrilinosWrappers::MPI::Vector &b)
   {
-    Assert(solver, ExcMessage("KluFactorization::solve before factorize"));
-    problem->SetLHS(&x.trilinos_vector());
-    problem->SetRHS(const_cast<Epetra_MultiVector *>(&b.trilinos_vector()));
-    int ierr = solver->Solve();
-    AssertThrow(ierr == 0, TrilinosWrappers::SolverDirect::ExcTrilinosError(ierr));
+    Assert(solver || direct, ExcMessage("KluFactorization::solve before factorize"));
+    int ierr = 0;
+    if (direct)
+      solve_direct(x.trilinos_vector()[0], b.trilinos_vector()[0]);
+    else
+      {
+        problem->SetLHS(&x.trilinos_vector());
+        problem->SetRHS(const_cast<Epetra_MultiVector *>(&b.trilinos_vector()));
+        ierr = solver->Solve();
+        AssertThrow(ierr == 0, TrilinosWrappers::SolverDirect::ExcTrilinosError(ierr));
+      }
     if (!pivots_reused)
       return;
 
@@ -116,9 +275,17 @@ namespace anvil
     const double scale = matrix_norm * x_norm + b_norm;
     if (r_norm <= backward_error_limit * scale || !(scale > 0))
       return;
-    numeric_factorization(false);
-    pivots_reused = false;
     ++pivoting_retries;
+    pivots_reused = false;
+    if (direct)
+      {
+        // Without a numeric object factorize_direct pivots.
+        trilinos_klu_free_numeric(&direct->numeric, &direct->common);
+        factorize_direct(*matrix);
+        solve_direct(x.trilinos_vector()[0], b.trilinos_vector()[0]);
+        return;
+      }
+    numeric_factorization(false);
     ierr = solver->Solve();
     AssertThrow(ierr == 0, TrilinosWrappers::SolverDirect::ExcTrilinosError(ierr));
   }

@@ -163,19 +163,90 @@ namespace anvil
     unsigned int n_cells = 0;
     max_plastic_increment = 0;
     material_failure.clear();
-    // A cell with no constrained dof and only owned rows adds its matrix by
-    // local row and column numbers, looked up once per dof and kept per cell
-    // while the matrix is (AssemblyMapping::local_indices): Epetra's SumIntoGlobalValues
-    // (what AffineConstraints calls) looks up every column of every row, 8x
-    // the look-ups. The same one addition per entry.
+    // A cell with no constrained dof and only owned rows and columns adds
+    // its matrix straight into Epetra's CRS value array, at the positions of
+    // its entries found once per cell and matrix pattern
+    // (AssemblyMapping::matrix_positions), and its vectors by owned local
+    // index (owned_vector_indices): no search of a row, no global-to-local
+    // look-up. Each entry gets the one addition SumIntoMyValues and
+    // Vector::add would make, in the same cell order: the same bits.
+    // Otherwise local row and column numbers (local_indices) or, with
+    // constraints, AffineConstraints.
     // deal.II 9.4 gives only const access to the Epetra matrix; ours is not const.
     const unsigned int n_dofs = fe.n_dofs_per_cell();
-    auto add_by_local_indices = [&](const CopyData &copy) {
-      auto &matrix = const_cast<Epetra_CrsMatrix &>(system_matrix.trilinos_matrix());
-      // Constraints change between steps (the predictor's): asked every time.
+    auto &matrix = const_cast<Epetra_CrsMatrix &>(system_matrix.trilinos_matrix());
+    int    *row_start = nullptr, *row_columns = nullptr;
+    double *matrix_values = nullptr;
+    if (with_matrix && matrix.ExtractCrsDataPointers(row_start, row_columns, matrix_values) != 0)
+      matrix_values = nullptr; // storage not optimised: add by local indices
+    const Epetra_BlockMap &owned_map = system_rhs.trilinos_vector().Map();
+    const auto owned_values = [&](TrilinosWrappers::MPI::Vector &v) -> double * {
+      const Epetra_BlockMap &m = v.trilinos_vector().Map();
+      const bool same = m.DataPtr() == owned_map.DataPtr() ||
+                        (m.NumMyElements() == owned_map.NumMyElements() &&
+                         std::equal(m.MyGlobalElements(), m.MyGlobalElements() + m.NumMyElements(),
+                                    owned_map.MyGlobalElements()));
+      return same ? v.trilinos_vector()[0] : nullptr;
+    };
+    double *const rhs_values      = owned_values(system_rhs);
+    double *const internal_values = owned_values(internal_force);
+    double *const external_values = owned_values(external_force);
+    double *const inertia_values  = owned_values(inertia_force);
+    // The cell's dofs in the owned vectors (null if one is owned elsewhere).
+    const auto owned_indices = [&](const CopyData &copy) -> const int * {
+      int *const own = assembly_mapping->owned_vector_indices(copy.cell_index, n_dofs);
+      if (own[0] == -2)
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          own[i] = owned_map.LID(static_cast<TrilinosWrappers::types::int_type>(copy.dof_indices[i]));
       for (unsigned int i = 0; i < n_dofs; ++i)
-        if (active_constraints->is_constrained(copy.dof_indices[i]))
-          return false;
+        if (own[i] < 0)
+          return nullptr;
+      return own;
+    };
+    const auto add_owned = [&](double *values, const int *own, const Vector<double> &local) {
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        values[own[i]] += local(i);
+    };
+    // The positions of the cell's matrix entries (null: add otherwise).
+    const auto matrix_positions = [&](const CopyData &copy) -> const int * {
+      if (!matrix_values)
+        return nullptr;
+      int *const pos = assembly_mapping->matrix_positions(copy.cell_index, n_dofs);
+      if (!pos)
+        return nullptr;
+      if (pos[0] == -2)
+        {
+          const auto find_all = [&] {
+            // The cell's local column numbers once, then each row searched.
+            std::vector<int> column(n_dofs);
+            for (unsigned int j = 0; j < n_dofs; ++j)
+              if ((column[j] = matrix.LCID(static_cast<TrilinosWrappers::types::int_type>(
+                     copy.dof_indices[j]))) < 0)
+                return false;
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              {
+                const int row =
+                  matrix.LRID(static_cast<TrilinosWrappers::types::int_type>(copy.dof_indices[i]));
+                if (row < 0)
+                  return false;
+                const int *const begin = row_columns + row_start[row];
+                const int *const end   = row_columns + row_start[row + 1];
+                for (unsigned int j = 0; j < n_dofs; ++j)
+                  {
+                    const int *const at = std::find(begin, end, column[j]);
+                    if (at == end)
+                      return false;
+                    pos[i * n_dofs + j] = at - row_columns;
+                  }
+              }
+            return true;
+          };
+          if (!find_all())
+            pos[0] = -1;
+        }
+      return pos[0] >= 0 ? pos : nullptr;
+    };
+    auto add_by_local_indices = [&](const CopyData &copy) {
       int *const local_rows = assembly_mapping->local_indices(copy.cell_index, n_dofs);
       int *const local_cols = local_rows + n_dofs;
       if (local_rows[0] == -2)
@@ -197,6 +268,37 @@ namespace anvil
       system_rhs.add(copy.dof_indices, copy.rhs);
       return true;
     };
+    // The cell's K and −R where no constraint is involved; false: not added.
+    auto add_unconstrained = [&](const CopyData &copy, const int *own) {
+      // Constraints change between steps (the predictor's): asked every time.
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        if (active_constraints->is_constrained(copy.dof_indices[i]))
+          return false;
+      if (!with_matrix)
+        {
+          if (!own || !rhs_values)
+            return false;
+          add_owned(rhs_values, own, copy.rhs);
+          return true;
+        }
+      if (const int *pos = own && rhs_values ? matrix_positions(copy) : nullptr)
+        {
+          const double *K = &copy.matrix(0, 0);
+          for (unsigned int k = 0; k < n_dofs * n_dofs; ++k)
+            matrix_values[pos[k]] += K[k];
+          add_owned(rhs_values, own, copy.rhs);
+          return true;
+        }
+      return add_by_local_indices(copy);
+    };
+    // A force vector: by owned local index, or deal.II's add.
+    const auto add_force = [&](TrilinosWrappers::MPI::Vector &v, double *values, const int *own,
+                               const CopyData &copy, const Vector<double> &local) {
+      if (own && values)
+        add_owned(values, own, local);
+      else
+        v.add(copy.dof_indices, local);
+    };
     auto copier = [&](const CopyData &copy) {
       if (failed)
         return;
@@ -208,15 +310,19 @@ namespace anvil
           return;
         }
       max_plastic_increment = std::max(max_plastic_increment, copy.max_plastic_increment);
+      const int *const own = owned_indices(copy);
       if (dynamic)
-        inertia_force.add(copy.dof_indices, copy.inertia);
-      if (with_matrix && !add_by_local_indices(copy))
-        active_constraints->distribute_local_to_global(copy.matrix, copy.rhs, copy.dof_indices,
-                                                       system_matrix, system_rhs);
-      else if (!with_matrix)
-        active_constraints->distribute_local_to_global(copy.rhs, copy.dof_indices, system_rhs);
-      internal_force.add(copy.dof_indices, copy.internal);
-      external_force.add(copy.dof_indices, copy.external);
+        add_force(inertia_force, inertia_values, own, copy, copy.inertia);
+      if (!add_unconstrained(copy, own))
+        {
+          if (with_matrix)
+            active_constraints->distribute_local_to_global(copy.matrix, copy.rhs, copy.dof_indices,
+                                                           system_matrix, system_rhs);
+          else
+            active_constraints->distribute_local_to_global(copy.rhs, copy.dof_indices, system_rhs);
+        }
+      add_force(internal_force, internal_values, own, copy, copy.internal);
+      add_force(external_force, external_values, own, copy, copy.external);
     };
 
     const UpdateFlags flags =

@@ -43,6 +43,8 @@ namespace anvil
       values_refused = false;
       local_ids.clear();
       vector_ids.clear();
+      matrix_positions_.clear();
+      owned_ids.clear();
       // The test FEValues::reinit() makes against the cell it saw before.
       chain_start.assign(n_active_cells, typename Triangulation<dim>::cell_iterator());
       for (unsigned int i = 0; i < cells.size(); ++i)

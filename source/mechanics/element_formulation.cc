@@ -57,17 +57,30 @@ namespace anvil
                                                         const std::vector<double> &values,
                                                         const double               R) const
     {
-      Tensor<2, dim> g;
-      double         u_r = 0;
+      // On plain arrays (the Tensor and embed() calls were most of the cost):
+      // each sum over the shape functions in their order, 1 + g and 0 + g
+      // as unit_symmetric_tensor() + g gave them: the same bits.
+      double             g[dim][dim] = {};
+      double             u_r         = 0;
+      const unsigned int *const c_of = component.data();
+      const double *const       u    = values.data();
       for (unsigned int i = 0; i < n_dofs; ++i)
         {
-          const unsigned int c = component[i];
+          const unsigned int c = c_of[i];
           for (unsigned int d = 0; d < dim; ++d)
-            g[c][d] += values[i] * grad[i * dim + d];
+            g[c][d] += u[i] * grad[i * dim + d];
           if (axisymmetric && c == 0)
-            u_r += values[i] * value[i];
+            u_r += u[i] * value[i];
         }
-      return deformation_gradient(g, u_r, R);
+      Tensor<2, 3> F;
+      for (unsigned int i = 0; i < dim; ++i)
+        for (unsigned int j = 0; j < dim; ++j)
+          F[i][j] = (i == j ? 1. : 0.) + g[i][j];
+      // Plane strain: F₃₃ = 1. Axisymmetric: the hoop stretch F₃₃ = 1 + u_r/R.
+      const double hoop = axisymmetric ? 1 + u_r / R : 1.;
+      for (unsigned int i = dim; i < 3; ++i)
+        F[i][i] = hoop;
+      return F;
     }
 
     template <int dim>

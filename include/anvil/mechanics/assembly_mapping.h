@@ -71,7 +71,48 @@ namespace anvil
           local_ids.assign(std::size_t(2) * n_dofs * n_active_cells, -2);
         return &local_ids[std::size_t(2) * n_dofs * active_cell_index];
       }
-      void forget_local_indices() const { local_ids.clear(); }
+      void forget_local_indices() const
+      {
+        local_ids.clear();
+        matrix_positions_.clear();
+      }
+
+      /**
+       * Per active cell index, the positions of the cell's @p n_dofs² matrix
+       * entries (i, j), row-major, in the value array of the matrix's CRS
+       * storage (Epetra_CrsMatrix::ExtractCrsDataPointers), so that the
+       * copier adds each entry where SumIntoMyValues would have found it,
+       * without searching the row (first −2: not looked up yet; −1: the cell
+       * has a row or column this process cannot add by position). Kept with
+       * local_indices() (forget_local_indices() when a new matrix is made);
+       * null when all cells' positions would take more than @p max_bytes.
+       * Not thread-safe: the copier runs serially.
+       */
+      int *matrix_positions(unsigned int active_cell_index, unsigned int n_dofs,
+                            std::size_t max_bytes = 64u << 20) const
+      {
+        const std::size_t per_cell = std::size_t(n_dofs) * n_dofs;
+        if (matrix_positions_.empty())
+          {
+            if (per_cell * n_active_cells * sizeof(int) > max_bytes)
+              return nullptr;
+            matrix_positions_.assign(per_cell * n_active_cells, -2);
+          }
+        return &matrix_positions_[per_cell * active_cell_index];
+      }
+
+      /**
+       * Per active cell index, the local numbers of its @p n_dofs dofs in the
+       * owned (non-ghosted) vectors' map, −1 for a dof owned elsewhere (first
+       * −2: not looked up yet), for the copier's additions into the force
+       * vectors. Valid while the dof numbering is (cleared by reinit()).
+       */
+      int *owned_vector_indices(unsigned int active_cell_index, unsigned int n_dofs) const
+      {
+        if (owned_ids.empty())
+          owned_ids.assign(std::size_t(n_dofs) * n_active_cells, -2);
+        return &owned_ids[std::size_t(n_dofs) * active_cell_index];
+      }
 
       /**
        * Per active cell index, the local numbers of its @p n_dofs dofs in the
@@ -107,7 +148,7 @@ namespace anvil
       unsigned int                                                     n_active_cells = 0;
       mutable std::shared_ptr<ReferenceValues<dim>>                    values;
       mutable bool                                                     values_refused = false;
-      mutable std::vector<int>                                         local_ids, vector_ids;
+      mutable std::vector<int> local_ids, vector_ids, matrix_positions_, owned_ids;
     };
   } // namespace MechanicsAssembly
 } // namespace anvil
