@@ -4,7 +4,10 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <anvil/core/instantiate.h>
+#include <anvil/thermal/kernels.h>
 #include <anvil/thermal/thermal_problem.h>
+
+#include <functional>
 
 namespace anvil
 {
@@ -13,13 +16,15 @@ namespace anvil
   namespace
   {
     /// Fill @p table by the loop the balance functions ran themselves: one
-    /// FEValues over all locally owned cells in order (cell similarity, where
-    /// the mapping uses it, then follows the same sequence of cells).
+    /// FEValues over the locally owned cells in order (cell similarity, where
+    /// the mapping uses it, then follows the same sequence of cells: the
+    /// reference table has all of them), those @p include accepts.
     template <int dim>
     void fill_table(thermal::CellTable &table, const Mapping<dim> &mapping, const FiniteElement<dim> &fe,
                     const Quadrature<dim> &quadrature, const UpdateFlags flags,
                     const DoFHandler<dim> &dofs, const TrilinosWrappers::MPI::Vector &layout,
-                    const bool axisymmetric, const bool with_points)
+                    const bool axisymmetric, const bool with_points,
+                    const std::function<bool(const typename DoFHandler<dim>::active_cell_iterator &)> &include)
     {
       table.clear();
       table.n_q    = quadrature.size();
@@ -31,7 +36,7 @@ namespace anvil
       std::vector<types::global_dof_index> indices(table.n_dofs);
       int                                  rows = 0;
       for (const auto &cell : dofs.active_cell_iterators())
-        if (cell->is_locally_owned())
+        if (cell->is_locally_owned() && include(cell))
           {
             table.row[cell->active_cell_index()] = rows++;
             fe_values.reinit(cell);
@@ -65,7 +70,7 @@ namespace anvil
     if (reference_table.empty())
       fill_table<dim>(reference_table, reference_mapping, fe, quadrature,
                       update_values | update_JxW_values | update_quadrature_points, dof_handler,
-                      temperature_ghosted, parameters.axisymmetric, false);
+                      temperature_ghosted, parameters.axisymmetric, false, [](const auto &) { return true; });
     return reference_table;
   }
 
@@ -77,7 +82,10 @@ namespace anvil
     if (current_table.empty())
       fill_table<dim>(current_table, *current_mapping, fe, quadrature,
                       update_JxW_values | update_quadrature_points, dof_handler, temperature_ghosted,
-                      parameters.axisymmetric, true);
+                      parameters.axisymmetric, true, [this](const CellIterator &cell) {
+                        // The cells the sources' integrals visit (CurrentWeights computes others).
+                        return heat_source && !thermal::zero_on_cell<dim>(heat_source, cell, quadrature.size());
+                      });
     return &current_table;
   }
 

@@ -22,6 +22,7 @@
 #include <anvil/thermal/kernels.h>
 #include <anvil/thermal/thermal_problem.h>
 
+#include "current_weights.h"
 #include "newton_factorisation.h"
 
 #include <algorithm>
@@ -126,6 +127,7 @@ namespace anvil
       {
         // The worker's sums below from the configuration's table (FE_Q's
         // values at the points are the reference ones): no FEValues per cell.
+        thermal::CurrentWeights<dim> w(*table, get_mapping(), fe, quadrature, parameters.axisymmetric);
         const auto        &shape = reference_cells().shape;
         const unsigned int n_q = quadrature.size(), n_dofs = fe.n_dofs_per_cell();
         thermal::CopyData  c(n_dofs);
@@ -135,14 +137,14 @@ namespace anvil
             {
               if (thermal::zero_on_cell<dim>(heat_source, cell, n_q))
                 continue;
-              const unsigned int k = table->row[cell->active_cell_index()] * n_q;
+              w.reinit(cell);
               for (unsigned int q = 0; q < n_q; ++q)
                 {
                   // as VolumeSource::cell_rates with no expression and no ġ_D, and fill_weights
                   double s = 0.;
                   s += heat_source(cell, q);
                   rate[q]   = s - 0.;
-                  weight[q] = table->JxW[k + q] * table->axis_weight[k + q];
+                  weight[q] = w.JxW[q] * w.axis_weight[q];
                 }
               c.vector = 0;
               for (unsigned int q = 0; q < n_q; ++q)

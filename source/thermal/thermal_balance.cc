@@ -9,6 +9,8 @@
 #include <anvil/thermal/kernels.h>
 #include <anvil/thermal/thermal_problem.h>
 
+#include "current_weights.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -75,26 +77,20 @@ namespace anvil
     if (const auto *table = current_cells())
       {
         // The same sums from the configuration's table (no FEValues per cell).
-        double power = 0;
+        thermal::CurrentWeights<dim> w(*table, get_mapping(), fe, quadrature, parameters.axisymmetric);
+        double                       power = 0;
         for (const auto &cell : dof_handler.active_cell_iterators())
           if (cell->is_locally_owned())
             {
               if (!source_function && thermal::zero_on_cell<dim>(heat_source, cell, quadrature.size()))
                 continue;
-              const unsigned int k = table->row[cell->active_cell_index()] * quadrature.size();
+              w.reinit(cell);
               for (unsigned int q = 0; q < quadrature.size(); ++q)
                 {
-                  double s = 0.;
-                  if (source_function)
-                    {
-                      Point<dim> x;
-                      for (unsigned int d = 0; d < dim; ++d)
-                        x[d] = table->points[(k + q) * dim + d];
-                      s = source_function->value(x);
-                    }
+                  double s = source_function ? source_function->value(w.point(q)) : 0.;
                   if (heat_source)
                     s += heat_source(cell, q);
-                  power += s * table->JxW[k + q] * table->axis_weight[k + q];
+                  power += s * w.JxW[q] * w.axis_weight[q];
                 }
             }
         return Utilities::MPI::sum(power, mpi_communicator);
@@ -173,15 +169,16 @@ namespace anvil
   {
     if (const auto *table = current_cells())
       {
-        double total = 0;
+        thermal::CurrentWeights<dim> w(*table, get_mapping(), fe, quadrature, parameters.axisymmetric);
+        double                       total = 0;
         for (const auto &cell : dof_handler.active_cell_iterators())
           if (cell->is_locally_owned())
             {
               if (thermal::zero_on_cell<dim>(source, cell, quadrature.size()))
                 continue;
-              const unsigned int k = table->row[cell->active_cell_index()] * quadrature.size();
+              w.reinit(cell);
               for (unsigned int q = 0; q < quadrature.size(); ++q)
-                total += source(cell, q) * table->JxW[k + q] * table->axis_weight[k + q];
+                total += source(cell, q) * w.JxW[q] * w.axis_weight[q];
             }
         return Utilities::MPI::sum(total, mpi_communicator);
       }
