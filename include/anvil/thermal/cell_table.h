@@ -24,7 +24,9 @@ namespace anvil
     struct CellTable
     {
       unsigned int n_q = 0, n_dofs = 0;
-      /// Row of each active cell (by active_cell_index), −1 where not owned.
+      /// Row of each active cell (by active_cell_index), −1 where not owned
+      /// or not in the table (the current configuration's holds the cells
+      /// with mechanical sources: thermal/current_weights.h computes others).
       std::vector<int> row;
       /// JxW and 2π x₀ (axisymmetric weight; 1 otherwise) at (row, q), and
       /// the quadrature points (dim doubles each) where asked for.

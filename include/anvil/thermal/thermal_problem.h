@@ -410,7 +410,8 @@ namespace anvil
     /// (FEValues flags of heat_content), built once per setup().
     const thermal::CellTable &reference_cells() const;
     /// The same on the current configuration (flags of source_power and
-    /// integrate), once per set_configuration(); nullptr without a moving
+    /// integrate) for the cells with mechanical sources, once per
+    /// set_configuration(); nullptr without a moving
     /// mapping (the reference MappingQ reuses values between similar cells,
     /// which a loop over other cells would not reproduce bit for bit).
     const thermal::CellTable *current_cells() const;
