@@ -108,14 +108,21 @@ namespace anvil
         {
           // k(T) = k₀ (1 + 0·(T − T_ref)) = k₀ and the dk term adds zero: the
           // same entries without T (the linear tangent does not fetch it).
+          // Symmetric term by term (∇φᵢ·∇φⱼ = ∇φⱼ·∇φᵢ in floating point too):
+          // the upper triangle, mirrored. copy.matrix is zero on entry (the
+          // one caller, ThermalProblem::assemble, zeroes it), so the mirrored
+          // sums are those of the full loop, bit for bit.
           for (unsigned int q = 0; q < scratch.weight.size(); ++q)
             {
               const double w = scratch.weight[q];
               const double k = material.conductivity;
               for (unsigned int i = 0; i < n; ++i)
-                for (unsigned int j = 0; j < n; ++j)
+                for (unsigned int j = i; j < n; ++j)
                   copy.matrix(i, j) += (k * (fe_values.shape_grad(i, q) * fe_values.shape_grad(j, q))) * w;
             }
+          for (unsigned int i = 0; i < n; ++i)
+            for (unsigned int j = i + 1; j < n; ++j)
+              copy.matrix(j, i) = copy.matrix(i, j);
           return;
         }
       for (unsigned int q = 0; q < scratch.weight.size(); ++q)

@@ -22,6 +22,7 @@
 #include <anvil/thermal/kernels.h>
 #include <anvil/thermal/thermal_problem.h>
 
+#include "current_weights.h"
 #include "newton_factorisation.h"
 
 #include <algorithm>
@@ -122,6 +123,39 @@ namespace anvil
     step_sources.reinit(locally_owned_dofs, mpi_communicator);
     if (!heat_source)
       return;
+    if (const auto *table = current_cells())
+      {
+        // The worker's sums below from the configuration's table (FE_Q's
+        // values at the points are the reference ones): no FEValues per cell.
+        thermal::CurrentWeights<dim> w(*table, get_mapping(), fe, quadrature, parameters.axisymmetric);
+        const auto        &shape = reference_cells().shape;
+        const unsigned int n_q = quadrature.size(), n_dofs = fe.n_dofs_per_cell();
+        thermal::CopyData  c(n_dofs);
+        std::vector<double> rate(n_q), weight(n_q);
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              if (thermal::zero_on_cell<dim>(heat_source, cell, n_q))
+                continue;
+              w.reinit(cell);
+              for (unsigned int q = 0; q < n_q; ++q)
+                {
+                  // as VolumeSource::cell_rates with no expression and no ġ_D, and fill_weights
+                  double s = 0.;
+                  s += heat_source(cell, q);
+                  rate[q]   = s - 0.;
+                  weight[q] = w.JxW[q] * w.axis_weight[q];
+                }
+              c.vector = 0;
+              for (unsigned int q = 0; q < n_q; ++q)
+                for (unsigned int i = 0; i < n_dofs; ++i)
+                  c.vector(i) += thermal::VolumeSource::residual(shape[i * n_q + q], rate[q]) * weight[q];
+              cell->get_dof_indices(c.dofs);
+              constraints.distribute_local_to_global(c.vector, c.dofs, step_sources);
+            }
+        step_sources.compress(VectorOperation::add);
+        return;
+      }
     const thermal::ScratchData<dim> scratch(get_mapping(), reference_mapping, fe, quadrature,
                                             face_quadrature,
                                             update_values | update_JxW_values | update_quadrature_points,

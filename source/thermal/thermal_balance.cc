@@ -9,6 +9,9 @@
 #include <anvil/thermal/kernels.h>
 #include <anvil/thermal/thermal_problem.h>
 
+#include "current_weights.h"
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -71,6 +74,27 @@ namespace anvil
       return 0;
     if (source_function)
       source_function->set_time(t);
+    if (const auto *table = current_cells())
+      {
+        // The same sums from the configuration's table (no FEValues per cell).
+        thermal::CurrentWeights<dim> w(*table, get_mapping(), fe, quadrature, parameters.axisymmetric);
+        double                       power = 0;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              if (!source_function && thermal::zero_on_cell<dim>(heat_source, cell, quadrature.size()))
+                continue;
+              w.reinit(cell);
+              for (unsigned int q = 0; q < quadrature.size(); ++q)
+                {
+                  double s = source_function ? source_function->value(w.point(q)) : 0.;
+                  if (heat_source)
+                    s += heat_source(cell, q);
+                  power += s * w.JxW[q] * w.axis_weight[q];
+                }
+            }
+        return Utilities::MPI::sum(power, mpi_communicator);
+      }
     FEValues<dim> fe_values(get_mapping(), fe, quadrature, update_JxW_values | update_quadrature_points);
     double        power = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -95,6 +119,34 @@ namespace anvil
   double ThermalProblem<dim>::heat_content(const Vector &T) const
   {
     // ∫ ρ c T dv = ∫ ρ₀ c T dV (mass conservation).
+    const auto &table = reference_cells();
+    if (table.reads(T.trilinos_vector().Map()))
+      {
+        // FEValues::get_function_values' sums (zero values skipped), from the table.
+        const double       *values = T.trilinos_vector()[0];
+        const unsigned int  n_q = table.n_q, n_dofs = table.n_dofs;
+        std::vector<double> T_q(n_q);
+        double              H = 0;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              const unsigned int r = table.row[cell->active_cell_index()];
+              std::fill(T_q.begin(), T_q.end(), 0.);
+              for (unsigned int j = 0; j < n_dofs; ++j)
+                {
+                  const double value = values[table.local_dofs[r * n_dofs + j]];
+                  if (value == 0)
+                    continue;
+                  for (unsigned int q = 0; q < n_q; ++q)
+                    T_q[q] += value * table.shape[j * n_q + q];
+                }
+              const auto &m = materials.at(cell->material_id());
+              for (unsigned int q = 0; q < n_q; ++q)
+                H += m.density * m.heat_capacity * T_q[q] * table.JxW[r * n_q + q] *
+                     table.axis_weight[r * n_q + q];
+            }
+        return Utilities::MPI::sum(H, mpi_communicator);
+      }
     FEValues<dim> fe_values(reference_mapping, fe, quadrature,
                             update_values | update_JxW_values | update_quadrature_points);
     std::vector<double> T_q(quadrature.size());
@@ -115,6 +167,21 @@ namespace anvil
   template <int dim>
   double ThermalProblem<dim>::integrate(const HeatSource &source) const
   {
+    if (const auto *table = current_cells())
+      {
+        thermal::CurrentWeights<dim> w(*table, get_mapping(), fe, quadrature, parameters.axisymmetric);
+        double                       total = 0;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              if (thermal::zero_on_cell<dim>(source, cell, quadrature.size()))
+                continue;
+              w.reinit(cell);
+              for (unsigned int q = 0; q < quadrature.size(); ++q)
+                total += source(cell, q) * w.JxW[q] * w.axis_weight[q];
+            }
+        return Utilities::MPI::sum(total, mpi_communicator);
+      }
     FEValues<dim> fe_values(get_mapping(), fe, quadrature, update_JxW_values | update_quadrature_points);
     double        total = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
@@ -181,6 +248,9 @@ namespace anvil
   template <int dim>
   double ThermalProblem<dim>::heat_content() const
   {
+    // step_balance computed it for this very field (NaN: not since it changed).
+    if (!std::isnan(solution_heat_content))
+      return solution_heat_content;
     return heat_content(temperature_ghosted);
   }
 
@@ -201,13 +271,21 @@ namespace anvil
     // mapping): Σ_j T_j φ_j(x_q) from the first cell's table, summed as
     // FEValues::get_function_values does (same bits), without its reinit.
     const unsigned int n_dofs = fe.n_dofs_per_cell();
+    // The dof values by their positions in the local arrays (the reference
+    // table's), not by a global look-up each.
+    const auto &table = reference_cells();
+    const bool  fast  = dof_cell->is_locally_owned() && table.reads(temperature_ghosted.trilinos_vector().Map()) &&
+                      table.reads(old_temperature_ghosted.trilinos_vector().Map());
     std::vector<types::global_dof_index> dofs(n_dofs);
-    dof_cell->get_dof_indices(dofs);
+    if (!fast)
+      dof_cell->get_dof_indices(dofs);
+    const int *local = fast ? &table.local_dofs[table.row[dof_cell->active_cell_index()] * n_dofs] : nullptr;
     auto values = [&](const Vector &T, std::vector<double> &out) {
       out.assign(q.size(), 0.);
+      const double *array = T.trilinos_vector()[0];
       for (unsigned int j = 0; j < n_dofs; ++j)
         {
-          const double value = T(dofs[j]);
+          const double value = fast ? array[local[j]] : T(dofs[j]);
           if (value == 0)
             continue;
           for (unsigned int k = 0; k < q.size(); ++k)

@@ -200,6 +200,8 @@ namespace anvil
       v->reinit(locally_owned_dofs, mpi_communicator);
     for (auto *v : {&temperature_ghosted, &old_temperature_ghosted, &scratch_ghosted})
       v->reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+    reference_table.clear(); // a new mesh or numbering
+    current_table.clear();
     newton_direct->clear(); // a new pattern
     mass_direct->clear();
     use_direct = parameters.linear_solver == "direct" ||
@@ -311,6 +313,7 @@ namespace anvil
     // M_fD on the reference one (ρ dv = ρ₀ dV) stay as they are.
     tangent_current = false;
     loads_current   = false;
+    current_table.clear();
   }
 
   template <int dim>

@@ -20,6 +20,7 @@
 
 #include <anvil/core/heat_exchange.h>
 #include <anvil/core/named_values.h>
+#include <anvil/thermal/cell_table.h>
 
 #include <functional>
 #include <map>
@@ -405,6 +406,15 @@ namespace anvil
     void   steady_linear_solve(double t, const Vector &T, const Vector &f, Vector &delta);
     /// Heat into the bodies through the Temperature boundaries, k grad T . n (mW).
     double dirichlet_heat_flow(const Vector &T_ghosted) const;
+    /// The balance loops' per-cell numbers on the reference configuration
+    /// (FEValues flags of heat_content), built once per setup().
+    const thermal::CellTable &reference_cells() const;
+    /// The same on the current configuration (flags of source_power and
+    /// integrate) for the cells with mechanical sources, once per
+    /// set_configuration(); nullptr without a moving
+    /// mapping (the reference MappingQ reuses values between similar cells,
+    /// which a loop over other cells would not reproduce bit for bit).
+    const thermal::CellTable *current_cells() const;
 
     MPI_Comm                                                 mpi_communicator;
     const dealii::parallel::distributed::Triangulation<dim> &triangulation;
@@ -482,5 +492,6 @@ namespace anvil
     Vector checkpoint_vector;
     mutable std::unique_ptr<dealii::FEValues<dim>> point_values;
     mutable std::unique_ptr<dealii::Quadrature<dim>> point_quadrature;
+    mutable thermal::CellTable reference_table, current_table;
   };
 } // namespace anvil
