@@ -138,8 +138,6 @@ namespace anvil
         f_bar.evaluate_centre(scratch);
       auto cell_points = (*context.points)[cell];
 
-      const MaterialModel &model = *context.materials->at(cell->material_id());
-      const auto          *j2    = dynamic_cast<const J2Model *>(&model);
       MaterialIncrement    increment;
       for (unsigned int q = 0; q < scratch.points.size(); ++q)
         {
