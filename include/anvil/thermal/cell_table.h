@@ -42,10 +42,23 @@ namespace anvil
 
       bool empty() const { return row.empty(); }
       void clear() { *this = CellTable(); }
-      /// Whether @p vector_map is the layout of local_dofs (same data, or same elements).
+      /// Whether @p vector_map is the layout of local_dofs (same data, or the
+      /// same owned and ghost elements in the same order). Local on purpose:
+      /// Epetra's SameAs/PointSameAs reduce over all processes, and this is
+      /// asked per owned cell, whose number differs between processes.
       bool reads(const Epetra_BlockMap &vector_map) const
       {
-        return map && (vector_map.PointSameAs(*map) || vector_map.SameAs(*map));
+        if (!map)
+          return false;
+        if (vector_map.DataPtr() == map->DataPtr())
+          return true;
+        const int n = map->NumMyElements();
+        if (vector_map.NumMyElements() != n)
+          return false;
+        for (int i = 0; i < n; ++i)
+          if (vector_map.GID64(i) != map->GID64(i))
+            return false;
+        return true;
       }
     };
   } // namespace thermal
