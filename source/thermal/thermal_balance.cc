@@ -74,44 +74,42 @@ namespace anvil
       return 0;
     if (source_function)
       source_function->set_time(t);
+    // One loop for both weight sources: the configuration's table (no
+    // FEValues per cell) and, for thermal-only scenes, an FEValues; the sums
+    // are the same products in the same order (s · JxW · ring weight).
+    double power = 0;
+    auto   sum   = [&](auto &&reinit, auto &&point, auto &&weighted) {
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            if (!source_function && thermal::zero_on_cell<dim>(heat_source, cell, quadrature.size()))
+              continue;
+            reinit(cell);
+            for (unsigned int q = 0; q < quadrature.size(); ++q)
+              {
+                double s = source_function ? source_function->value(point(q)) : 0.;
+                if (heat_source)
+                  s += heat_source(cell, q);
+                power += weighted(s, q);
+              }
+          }
+    };
     if (const auto *table = current_cells())
       {
-        // The same sums from the configuration's table (no FEValues per cell).
         thermal::CurrentWeights<dim> w(*table, get_mapping(), fe, quadrature, parameters.axisymmetric);
-        double                       power = 0;
-        for (const auto &cell : dof_handler.active_cell_iterators())
-          if (cell->is_locally_owned())
-            {
-              if (!source_function && thermal::zero_on_cell<dim>(heat_source, cell, quadrature.size()))
-                continue;
-              w.reinit(cell);
-              for (unsigned int q = 0; q < quadrature.size(); ++q)
-                {
-                  double s = source_function ? source_function->value(w.point(q)) : 0.;
-                  if (heat_source)
-                    s += heat_source(cell, q);
-                  power += s * w.JxW[q] * w.axis_weight[q];
-                }
-            }
-        return Utilities::MPI::sum(power, mpi_communicator);
+        sum([&](const auto &cell) { w.reinit(cell); }, [&](const unsigned int q) { return w.point(q); },
+            [&](const double s, const unsigned int q) { return s * w.JxW[q] * w.axis_weight[q]; });
       }
-    FEValues<dim> fe_values(get_mapping(), fe, quadrature, update_JxW_values | update_quadrature_points);
-    double        power = 0;
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          if (!source_function && thermal::zero_on_cell<dim>(heat_source, cell, quadrature.size()))
-            continue;
-          fe_values.reinit(cell);
-          for (unsigned int q = 0; q < quadrature.size(); ++q)
-            {
-              const Point<dim> &x = fe_values.quadrature_point(q);
-              double s = source_function ? source_function->value(x) : 0.;
-              if (heat_source)
-                s += heat_source(cell, q);
-              power += s * fe_values.JxW(q) * (parameters.axisymmetric ? 2 * numbers::PI * x[0] : 1.);
-            }
-        }
+    else
+      {
+        FEValues<dim> fe_values(get_mapping(), fe, quadrature, update_JxW_values | update_quadrature_points);
+        sum([&](const auto &cell) { fe_values.reinit(cell); },
+            [&](const unsigned int q) { return fe_values.quadrature_point(q); },
+            [&](const double s, const unsigned int q) {
+              const double x0 = fe_values.quadrature_point(q)[0];
+              return s * fe_values.JxW(q) * (parameters.axisymmetric ? 2 * numbers::PI * x0 : 1.);
+            });
+      }
     return Utilities::MPI::sum(power, mpi_communicator);
   }
 
