@@ -23,6 +23,8 @@ namespace anvil
       , fe_face_values(mapping, fe, face_quadrature,
                        update_values | update_gradients | update_normal_vectors |
                          update_JxW_values | update_quadrature_points)
+      , own_values(ReferenceValues<dim>::entry_size(quadrature.size(), fe.n_dofs_per_cell()))
+      , own_radii(quadrature.size() + 1)
       , local_u(fe.n_dofs_per_cell())
       , local_u_old(fe.n_dofs_per_cell())
       , local_v_old(fe.n_dofs_per_cell())
@@ -37,8 +39,6 @@ namespace anvil
       , face_grad_u(face_quadrature.size())
       , face_u(face_quadrature.size())
       , face_d_nda(fe.n_dofs_per_cell())
-      , own_values(ReferenceValues<dim>::entry_size(quadrature.size(), fe.n_dofs_per_cell()))
-      , own_radii(quadrature.size() + 1)
     {}
 
     template <int dim>

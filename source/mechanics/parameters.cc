@@ -79,7 +79,9 @@ namespace anvil
                       "Correction norm in mm below which the increment test passes whatever the "
                       "step (0: only the relative test and the round-off floor).");
     prm.declare_entry("Line search", "true", Patterns::Bool(),
-                      "Backtrack (halve the Newton update, up to 5 times) while the residual grows.");
+                      "Shorten the Newton update when the energy norm s(α) = δu · R(u + α δu) "
+                      "(Crisfield) is not reduced enough: α from the secant root of s, within "
+                      "[0.1, 1], at most 5 trials; also when an element inverts (α halved).");
     prm.declare_entry("Line search bound far from convergence", "0.8", Patterns::Double(0, 1),
                       "b while |R| > 0.1 |R_0| of the step: the line search keeps a step length α "
                       "when |s(α)| <= b |s(0)|, s(α) = δu · R(u + α δu) (Crisfield's energy norm); "

@@ -77,12 +77,9 @@ namespace anvil
     std::vector<int> column_to_row;
     /// Rows of block k: rows[block_start[k] .. block_start[k+1]).
     std::vector<unsigned int> block_start, rows;
-    /// The inverse of each diagonal block (row-major, n_k × n_k); pivots:
-    /// unused since the inverses replaced the LU factors (kept to spare a
-    /// rebuild of every includer of linear_solver.h; to be removed).
+    /// The inverse of each diagonal block (row-major, n_k × n_k).
     std::vector<std::size_t> factor_start;
     std::vector<double>      factors;
-    std::vector<int>         pivots;
     mutable std::vector<double> work;
   };
 } // namespace anvil
