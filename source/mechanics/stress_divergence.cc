@@ -4,6 +4,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 
 #include <anvil/core/instantiate.h>
+#include <anvil/material/planar_tangent.h>
 #include <anvil/mechanics/assembly_kernels.h>
 
 #include <algorithm>
@@ -289,9 +290,15 @@ namespace anvil
             }
           if (!context.with_matrix)
             continue;
+          // Only δσ's components 00, 11, 22, 01 enter: the planar Jaumann
+          // tangent computes no others (cauchy_tangent's dispatch, without them).
           auto &dsigma = scratch.dsigma;
-          cauchy_tangent(p.kin, p.point->committed_stress(), p.response, formulation.directions,
-                         dsigma.data());
+          if (p.kin.planar && p.kin.rate == ObjectiveRate::jaumann)
+            planar_cauchy_tangent_in_plane(p.kin, p.point->committed_stress(), p.response,
+                                           formulation.directions, dsigma.data());
+          else
+            cauchy_tangent(p.kin, p.point->committed_stress(), p.response, formulation.directions,
+                           dsigma.data());
           planar_tangent_matrix<N_DIR>(p, pp, dsigma.data(), f_bar_on, formulation.alpha, scratch.A,
                                        scratch.T0);
           add_planar_tangent<N_DOFS, HOOP>(scratch.A, gx, gy, h, scratch.T0.data(),
