@@ -242,12 +242,12 @@ namespace anvil
     } // namespace
 
     template <int dim>
-    StressDivergence<dim>::StressDivergence(const Context<dim> &context)
+    StressDivergence<dim>::StressDivergence(const Context<dim> &context, const bool planar_kernel)
       : context(context)
       , f_bar(*context.formulation)
     {
       const Formulation<dim> &formulation = *context.formulation;
-      bool interleaved = dim == 2;
+      bool interleaved = dim == 2 && planar_kernel;
       for (unsigned int a = 0; a < formulation.n_dofs; ++a)
         interleaved = interleaved && formulation.component[a] == a % 2;
       if (interleaved && (formulation.n_dofs == 8 || formulation.n_dofs == 18))

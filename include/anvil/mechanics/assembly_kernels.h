@@ -126,7 +126,9 @@ namespace anvil
     class StressDivergence
     {
     public:
-      explicit StressDivergence(const Context<dim> &context);
+      /// @p planar_kernel false: the general kernel also where the planar one
+      /// applies (tests compare the two).
+      explicit StressDivergence(const Context<dim> &context, bool planar_kernel = true);
       void assemble(ScratchData<dim> &scratch, CopyData &copy) const;
 
     private:
