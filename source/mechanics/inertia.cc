@@ -71,31 +71,38 @@ namespace anvil
       // The dof mass M_ab is m_ij of the nodes of a and b if they share a
       // component, else zero: only those b are visited (the sums of the full
       // rows, whose other terms are exact zeros). Lumped: M_aa = its row's sum.
+      // ã_b once per dof, not per pair (the same expression: the same bits).
+      double a_tilde[27 * 3];
+      AssertThrow(n_dofs <= 27 * 3, ExcInternalError());
+      for (unsigned int b = 0; b < n_dofs; ++b)
+        a_tilde[b] = (1 - alpha_m) * scratch.local_a[b] + alpha_m * scratch.local_a_old[b];
+      const double *acc = scratch.local_a.data();
+      double       *K   = context.with_matrix ? &copy.matrix(0, 0) : nullptr;
       for (unsigned int a = 0; a < n_dofs; ++a)
         {
-          const double *m_row = m + node[a] * n_nodes;
-          double        ma = 0, ma_tilde = 0;
+          const double      *m_row = m + node[a] * n_nodes;
+          const unsigned int ca    = component[a];
+          double             ma = 0, ma_tilde = 0;
           if (context.lumped_mass)
             {
               double m_aa = 0;
               for (unsigned int b = 0; b < n_dofs; ++b)
-                if (component[b] == component[a])
+                if (component[b] == ca)
                   m_aa += m_row[node[b]];
-              ma       = m_aa * scratch.local_a[a];
-              ma_tilde = m_aa * ((1 - alpha_m) * scratch.local_a[a] + alpha_m * scratch.local_a_old[a]);
-              if (context.with_matrix)
-                copy.matrix(a, a) += mass_factor * m_aa;
+              ma       = m_aa * acc[a];
+              ma_tilde = m_aa * a_tilde[a];
+              if (K)
+                K[a * n_dofs + a] += mass_factor * m_aa;
             }
           else
             for (unsigned int b = 0; b < n_dofs; ++b)
-              if (component[b] == component[a])
+              if (component[b] == ca)
                 {
                   const double m_ab = m_row[node[b]];
-                  ma += m_ab * scratch.local_a[b];
-                  ma_tilde +=
-                    m_ab * ((1 - alpha_m) * scratch.local_a[b] + alpha_m * scratch.local_a_old[b]);
-                  if (context.with_matrix)
-                    copy.matrix(a, b) += mass_factor * m_ab;
+                  ma += m_ab * acc[b];
+                  ma_tilde += m_ab * a_tilde[b];
+                  if (K)
+                    K[a * n_dofs + b] += mass_factor * m_ab;
                 }
           copy.inertia(a) = ma;
           copy.rhs(a) -= ma_tilde;

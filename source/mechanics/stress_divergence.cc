@@ -246,12 +246,8 @@ namespace anvil
       : context(context)
       , f_bar(*context.formulation)
     {
-      const Formulation<dim> &formulation = *context.formulation;
-      bool interleaved = dim == 2 && planar_kernel;
-      for (unsigned int a = 0; a < formulation.n_dofs; ++a)
-        interleaved = interleaved && formulation.component[a] == a % 2;
-      if (interleaved && (formulation.n_dofs == 8 || formulation.n_dofs == 18))
-        planar_dofs = formulation.n_dofs;
+      if (planar_kernel)
+        planar_dofs = context.formulation->planar_dofs;
     }
 
     template <int dim>
