@@ -31,15 +31,35 @@ namespace anvil
     }
 
     /**
-     * X Y Zᵀ of tensors of the form [2x2, 0; 0, (2,2)] except that Y may
+     * σ = C : d + S : e (σ zero before, d and e in-plane: raw 0, 1, 3) in one
+     * pass over the rows, the sums of two add_contraction() calls: the same bits.
+     */
+    template <unsigned int N_ROWS>
+    void add_two_contractions(const SymmetricTensor<4, 3> &C, const double (&d)[6],
+                              const SymmetricTensor<4, 3> &S, const double (&e)[6], double *s)
+    {
+      const double  dw[3] = {d[0], d[1], d[3] * 2.}, ew[3] = {e[0], e[1], e[3] * 2.};
+      const double *c = C.begin_raw(), *t = S.begin_raw();
+      for (unsigned int p = 0; p < N_ROWS; ++p)
+        {
+          const double vc = c[6 * p] * dw[0] + c[6 * p + 1] * dw[1] + c[6 * p + 3] * dw[2];
+          const double vs = t[6 * p] * ew[0] + t[6 * p + 1] * ew[1] + t[6 * p + 3] * ew[2];
+          s[p] = vc + vs;
+        }
+    }
+
+    /**
+     * (I + Z) Y Zᵀ of tensors of the form [2x2, 0; 0, (2,2)] except that Y may
      * have the entries 02, 12 (Y symmetric): rows 0 and 1 of the product, as
      * deal.II's Tensor products sum them (the first term, then the others in
      * order), with the products of zero entries left out: the same bits.
      */
-    void planar_triple_product(const Tensor<2, 3> &X, const Tensor<2, 3> &Y, const Tensor<2, 3> &Z,
+    void planar_triple_product(const Tensor<2, 3> &Z, const SymmetricTensor<2, 3> &Y,
                                const bool y_out_of_plane, double (&R)[2][3])
     {
-      double XY[2][3];
+      // X = I + Z: its 2x2 block as the Tensor sum gives it.
+      const double X[2][2] = {{1 + Z[0][0], 0 + Z[0][1]}, {0 + Z[1][0], 1 + Z[1][1]}};
+      double       XY[2][3];
       for (unsigned int i = 0; i < 2; ++i)
         {
           for (unsigned int j = 0; j < 2; ++j)
@@ -68,13 +88,11 @@ namespace anvil
       // σ_n ΔRᵀ is then not block-diagonal). The hoop direction (2, 2) has
       // a ∥ b ∥ e₂: δΔε = (1 − ½ΔL₂₂)(F½⁻¹)₂₂ e₂⊗e₂ and δσ̃ = 0.
       const Tensor<2, 3> &Rh = kin.half_rotation, &Ah = kin.A_half_inv, &A = kin.A_inv;
-      const Tensor<2, 3>  I  = unit_symmetric_tensor<3>();
       const bool          out_of_plane = stress_old[0][2] != 0 || stress_old[1][2] != 0;
       // PM = (I + R_h) Δε_mid R_hᵀ (block-diagonal), QS = (I + ΔR) σ_n ΔRᵀ: their rows 0, 1.
       double PM[2][3], QS[2][3];
-      planar_triple_product(I + Rh, Tensor<2, 3>(kin.mid_strain), Rh, false, PM);
-      planar_triple_product(I + kin.rotation_increment, Tensor<2, 3>(stress_old),
-                            kin.rotation_increment, out_of_plane, QS);
+      planar_triple_product(Rh, kin.mid_strain, false, PM);
+      planar_triple_product(kin.rotation_increment, stress_old, out_of_plane, QS);
 
       struct Images
       {
@@ -131,15 +149,21 @@ namespace anvil
           if (out_of_plane)
             for (unsigned int i = 0; i < 2; ++i) // (i, 2): x_2i = 0 (a, b in the plane)
               drot[4 + i] = 0.25 * (a.A[i] * b.qs[2] - b.A[i] * a.qs[2]);
-          add_contraction<N_ROWS>(response.tangent, deps, in_plane, dsigma[d]);
           if (response.sensitivity_is_identity)
-            for (unsigned int c = 0; c < N_ROWS; ++c)
-              s[c] += drot[c];
+            {
+              add_contraction<N_ROWS>(response.tangent, deps, in_plane, dsigma[d]);
+              for (unsigned int c = 0; c < N_ROWS; ++c)
+                s[c] += drot[c];
+            }
           else if (out_of_plane)
-            add_contraction<N_ROWS>(response.rotated_stress_sensitivity, drot, with_shear,
-                                    dsigma[d]);
+            {
+              add_contraction<N_ROWS>(response.tangent, deps, in_plane, dsigma[d]);
+              add_contraction<N_ROWS>(response.rotated_stress_sensitivity, drot, with_shear,
+                                      dsigma[d]);
+            }
           else
-            add_contraction<N_ROWS>(response.rotated_stress_sensitivity, drot, in_plane, dsigma[d]);
+            add_two_contractions<N_ROWS>(response.tangent, deps,
+                                         response.rotated_stress_sensitivity, drot, s);
         }
     }
   } // namespace
