@@ -39,7 +39,41 @@ namespace anvil
           x = -1;
       for (unsigned int k = 0; k < directions.n; ++k)
         where[directions.kl[k].first][directions.kl[k].second] = k;
+      bool interleaved = dim == 2;
+      for (unsigned int a = 0; a < n_dofs; ++a)
+        interleaved = interleaved && component[a] == a % 2;
+      if (interleaved && (n_dofs == 8 || n_dofs == 18))
+        planar_dofs = n_dofs;
     }
+
+    namespace
+    {
+      /**
+       * Formulation::deformation_gradient's sums for dim = 2 with the dofs
+       * interleaved (component a mod 2) and N_DOFS known: each g_cd over the
+       * shape functions of component c in their order, as the general loop
+       * adds them (the same bits), without its run-time component look-up.
+       */
+      template <unsigned int N_DOFS>
+      void planar_displacement_gradient(const double *__restrict grad,
+                                        const double *__restrict value,
+                                        const double *__restrict u, const bool hoop,
+                                        double (&g)[2][2], double &u_r)
+      {
+        double g00 = 0, g01 = 0, g10 = 0, g11 = 0, r = 0;
+        for (unsigned int a = 0; a < N_DOFS; a += 2)
+          {
+            g00 += u[a] * grad[2 * a];
+            g01 += u[a] * grad[2 * a + 1];
+            g10 += u[a + 1] * grad[2 * a + 2];
+            g11 += u[a + 1] * grad[2 * a + 3];
+            if (hoop)
+              r += u[a] * value[a];
+          }
+        g[0][0] = g00, g[0][1] = g01, g[1][0] = g10, g[1][1] = g11;
+        u_r = r;
+      }
+    } // namespace
 
     template <int dim>
     Tensor<2, 3> Formulation<dim>::deformation_gradient(const Tensor<2, dim> &grad_u,
@@ -64,14 +98,22 @@ namespace anvil
       double             u_r         = 0;
       const unsigned int *const c_of = component.data();
       const double *const       u    = values.data();
-      for (unsigned int i = 0; i < n_dofs; ++i)
+      if constexpr (dim == 2)
         {
-          const unsigned int c = c_of[i];
-          for (unsigned int d = 0; d < dim; ++d)
-            g[c][d] += u[i] * grad[i * dim + d];
-          if (axisymmetric && c == 0)
-            u_r += u[i] * value[i];
+          if (planar_dofs == 8)
+            planar_displacement_gradient<8>(grad, value, u, axisymmetric, g, u_r);
+          else if (planar_dofs == 18)
+            planar_displacement_gradient<18>(grad, value, u, axisymmetric, g, u_r);
         }
+      if (planar_dofs == 0)
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          {
+            const unsigned int c = c_of[i];
+            for (unsigned int d = 0; d < dim; ++d)
+              g[c][d] += u[i] * grad[i * dim + d];
+            if (axisymmetric && c == 0)
+              u_r += u[i] * value[i];
+          }
       Tensor<2, 3> F;
       for (unsigned int i = 0; i < dim; ++i)
         for (unsigned int j = 0; j < dim; ++j)

@@ -4,6 +4,7 @@
 #include <deal.II/base/symmetric_tensor.h>
 
 #include <anvil/core/instantiate.h>
+#include <anvil/material/planar_tangent.h>
 #include <anvil/mechanics/assembly_kernels.h>
 
 #include <algorithm>
@@ -95,11 +96,222 @@ namespace anvil
               K[a * n_dofs + b] += s[b];
           }
       }
+
+      /**
+       * The planar kernel's quantities of one point: F⁻¹ of a true F = [F_2x2,
+       * 0; 0, F₃₃] and σF⁻ᵀ. F⁻¹ is deal.II's invert() without its products
+       * of zeros, σF⁻ᵀ the Tensor product's sums without their zero terms
+       * ((F⁻¹)_J2 = 0 for J < 2): the same bits as the general loop.
+       */
+      struct PlanarPoint
+      {
+        double Fi[3][3], sFiT[3][3]; // sFiT: the entries (i, J < 2) and (2, 2) only
+
+        PlanarPoint(const Tensor<2, 3> &F, const SymmetricTensor<2, 3> &sigma)
+        {
+          const double r00 = F[1][1] * F[2][2], r01 = -(F[0][1] * F[2][2]),
+                       r10 = -(F[1][0] * F[2][2]), r11 = F[0][0] * F[2][2],
+                       r22 = F[0][0] * F[1][1] - F[0][1] * F[1][0];
+          const double inv = 1.0 / (F[0][0] * r00 + F[0][1] * r10);
+          Fi[0][0] = r00 * inv, Fi[0][1] = r01 * inv, Fi[0][2] = 0;
+          Fi[1][0] = r10 * inv, Fi[1][1] = r11 * inv, Fi[1][2] = 0;
+          Fi[2][0] = 0, Fi[2][1] = 0, Fi[2][2] = r22 * inv;
+          for (unsigned int i = 0; i < 2; ++i)
+            for (unsigned int J = 0; J < 2; ++J)
+              sFiT[i][J] = sigma[i][0] * Fi[J][0] + sigma[i][1] * Fi[J][1];
+          sFiT[2][2] = sigma[2][2] * Fi[2][2];
+          sFiT[0][2] = sFiT[1][2] = sFiT[2][0] = sFiT[2][1] = 0; // enter A times (F⁻¹)_J2 = 0
+        }
+      };
+
+      /// Direction d = (k, L) of TangentDirections::in_plane(2, hoop).
+      constexpr unsigned int planar_k[5] = {0, 0, 1, 1, 2}, planar_L[5] = {0, 1, 0, 1, 2};
+
+      /**
+       * (s F⁻ᵀ)_c of a symmetric s given by its raw components 00, 11, 22, 01
+       * (the rest enter times zeros of F⁻¹) for the planar direction c.
+       */
+      inline double planar_times_FiT(const double (&s)[4], const double (&Fi)[3][3],
+                                     const unsigned int c)
+      {
+        if (c == 4)
+          return s[2] * Fi[2][2];
+        const unsigned int i = planar_k[c], J = planar_L[c];
+        return (i == 0 ? s[0] : s[3]) * Fi[J][0] + (i == 0 ? s[3] : s[1]) * Fi[J][1];
+      }
+
+      /**
+       * A = ∂P/∂F over the N_DIR planar directions and T0 (F-bar) as
+       * StressDivergence::add_tangent computes them, with the zeros of the
+       * block structure left out of the sums: only the components 00, 11,
+       * 22, 01 of each δσ enter (the others meet (F⁻¹)_J2 = 0), and the
+       * terms σF⁻ᵀ_iL (F⁻ᵀ)_kJ vanish between an in-plane and the hoop
+       * direction. The same bits.
+       */
+      template <unsigned int N_DIR>
+      void planar_tangent_matrix(const PointValues &p, const PlanarPoint &pp,
+                                 const SymmetricTensor<2, 3> *dsigma, const bool f_bar_on,
+                                 const double alpha, std::array<std::array<double, 9>, 9> &A,
+                                 std::array<double, 9> &T0)
+      {
+        const double(&Fi)[3][3] = pp.Fi;
+        const double(&sFiT)[3][3] = pp.sFiT;
+        const double J = p.J;
+        double       ds_Fbar[4] = {0, 0, 0, 0}; // δσ in the direction F̄ (FBar::stress_along)
+        if (f_bar_on)
+          for (unsigned int d = 0; d < N_DIR; ++d)
+            {
+              const double f = p.F_mat[planar_k[d]][planar_L[d]];
+              for (unsigned int r = 0; r < 4; ++r)
+                ds_Fbar[r] += f * dsigma[d].access_raw_entry(r);
+            }
+        const SymmetricTensor<2, 3> &vrs = p.response.volume_ratio_sensitivity;
+        for (unsigned int d = 0; d < N_DIR; ++d)
+          {
+            const unsigned int k = planar_k[d], L = planar_L[d];
+            double             ds[4];
+            for (unsigned int r = 0; r < 4; ++r)
+              ds[r] = dsigma[d].access_raw_entry(r);
+            if (f_bar_on) // FBar::stress_derivative
+              {
+                const double a = alpha * Fi[L][k];
+                for (unsigned int r = 0; r < 4; ++r)
+                  ds[r] = p.beta * ds[r] - a * ds_Fbar[r];
+              }
+            if (p.adiabatic)
+              for (unsigned int r = 0; r < 4; ++r)
+                ds[r] += Fi[L][k] * vrs.access_raw_entry(r);
+            for (unsigned int c = 0; c < N_DIR; ++c)
+              {
+                const unsigned int i = planar_k[c], J_ = planar_L[c];
+                double a = Fi[L][k] * sFiT[i][J_] + planar_times_FiT(ds, Fi, c);
+                if ((c == 4) == (d == 4))
+                  a -= sFiT[i][L] * Fi[J_][k];
+                A[c][d] = J * a;
+              }
+          }
+        if (f_bar_on) // FBar::centre_coupling
+          for (unsigned int c = 0; c < N_DIR; ++c)
+            T0[c] = J * alpha * planar_times_FiT(ds_Fbar, Fi, c);
+      }
+
+      /**
+       * add_dense_tangent for the interleaved planar layout (dof b has
+       * component b mod 2; ∂F/∂u_b has the entries (0, J) = ∂N_b/∂X_J and
+       * with HOOP (2, 2) = N_b/R for component 0, (1, J) for component 1):
+       * only the nonzero terms of its sums, in the same order. The same bits.
+       */
+      template <unsigned int N_DOFS, bool HOOP>
+      void add_planar_tangent(const std::array<std::array<double, 9>, 9> &A,
+                              const double *__restrict gx, const double *__restrict gy,
+                              const double *__restrict h, const double *__restrict T0,
+                              const double *__restrict tr, const double w, double *__restrict K)
+      {
+        constexpr unsigned int N_DIR = HOOP ? 5 : 4;
+        double                 AG[N_DIR][N_DOFS];
+        for (unsigned int c = 0; c < N_DIR; ++c)
+          for (unsigned int b = 0; b < N_DOFS; b += 2)
+            {
+              double s0 = A[c][0] * gx[b] + A[c][1] * gy[b];
+              if (HOOP)
+                s0 += A[c][4] * h[b];
+              double s1 = A[c][2] * gx[b + 1] + A[c][3] * gy[b + 1];
+              if (tr)
+                {
+                  s0 += T0[c] * tr[b];
+                  s1 += T0[c] * tr[b + 1];
+                }
+              AG[c][b]     = s0 * w;
+              AG[c][b + 1] = s1 * w;
+            }
+        for (unsigned int a = 0; a < N_DOFS; a += 2)
+          {
+            double *K0 = K + a * N_DOFS, *K1 = K0 + N_DOFS;
+            double  s[N_DOFS];
+            for (unsigned int b = 0; b < N_DOFS; ++b)
+              s[b] = gx[a] * AG[0][b] + gy[a] * AG[1][b];
+            if (HOOP)
+              for (unsigned int b = 0; b < N_DOFS; ++b)
+                s[b] += h[a] * AG[N_DIR - 1][b];
+            for (unsigned int b = 0; b < N_DOFS; ++b)
+              K0[b] += s[b];
+            for (unsigned int b = 0; b < N_DOFS; ++b)
+              K1[b] += gx[a + 1] * AG[2][b] + gy[a + 1] * AG[3][b];
+          }
+      }
     } // namespace
+
+    template <int dim>
+    StressDivergence<dim>::StressDivergence(const Context<dim> &context, const bool planar_kernel)
+      : context(context)
+      , f_bar(*context.formulation)
+    {
+      if (planar_kernel)
+        planar_dofs = context.formulation->planar_dofs;
+    }
+
+    template <int dim>
+    template <unsigned int N_DOFS, bool HOOP>
+    void StressDivergence<dim>::assemble_planar(ScratchData<dim> &scratch, CopyData &copy) const
+    {
+      constexpr unsigned int  N_DIR       = HOOP ? 5 : 4;
+      const Formulation<dim> &formulation = *context.formulation;
+      const bool              f_bar_on    = formulation.f_bar;
+      const ReferenceCellValues &cell     = scratch.cell;
+      double                  gx[N_DOFS], gy[N_DOFS], h[N_DOFS];
+      for (unsigned int q = 0; q < scratch.points.size(); ++q)
+        {
+          const PointValues &p = scratch.points[q];
+          // P = J σ F⁻ᵀ with the true J and F: ∫ σ : ∇ₓδv dv on the current volume.
+          const PlanarPoint pp(p.F, p.response.stress);
+          const double      P00 = p.J * pp.sFiT[0][0], P01 = p.J * pp.sFiT[0][1],
+                       P10 = p.J * pp.sFiT[1][0], P11 = p.J * pp.sFiT[1][1],
+                       P22 = p.J * pp.sFiT[2][2];
+          const double *grad = cell.grad + q * N_DOFS * 2;
+          for (unsigned int a = 0; a < N_DOFS; ++a)
+            {
+              gx[a] = grad[2 * a];
+              gy[a] = grad[2 * a + 1];
+            }
+          for (unsigned int a = 0; a < N_DOFS; a += 2)
+            {
+              double f0 = P00 * gx[a] + P01 * gy[a];
+              if (HOOP) // δF₃₃ = δu_r/R
+                {
+                  h[a] = cell.value[q * N_DOFS + a] / p.R;
+                  f0 += P22 * h[a];
+                }
+              copy.internal(a) += f0 * p.w;
+              copy.internal(a + 1) += (P10 * gx[a + 1] + P11 * gy[a + 1]) * p.w;
+            }
+          if (!context.with_matrix)
+            continue;
+          // Only δσ's components 00, 11, 22, 01 enter: the planar Jaumann
+          // tangent computes no others (cauchy_tangent's dispatch, without them).
+          auto &dsigma = scratch.dsigma;
+          if (p.kin.planar && p.kin.rate == ObjectiveRate::jaumann)
+            planar_cauchy_tangent_in_plane(p.kin, p.point->committed_stress(), p.response,
+                                           formulation.directions, dsigma.data());
+          else
+            cauchy_tangent(p.kin, p.point->committed_stress(), p.response, formulation.directions,
+                           dsigma.data());
+          planar_tangent_matrix<N_DIR>(p, pp, dsigma.data(), f_bar_on, formulation.alpha, scratch.A,
+                                       scratch.T0);
+          add_planar_tangent<N_DOFS, HOOP>(scratch.A, gx, gy, h, scratch.T0.data(),
+                                           f_bar_on ? scratch.center_trace.data() : nullptr, p.w,
+                                           &copy.matrix(0, 0));
+        }
+    }
 
     template <int dim>
     void StressDivergence<dim>::assemble(ScratchData<dim> &scratch, CopyData &copy) const
     {
+      if (planar_dofs == 8)
+        return context.formulation->axisymmetric ? assemble_planar<8, true>(scratch, copy) :
+                                                   assemble_planar<8, false>(scratch, copy);
+      if (planar_dofs == 18)
+        return context.formulation->axisymmetric ? assemble_planar<18, true>(scratch, copy) :
+                                                   assemble_planar<18, false>(scratch, copy);
       const Formulation<dim> &formulation = *context.formulation;
       const auto             &directions  = formulation.directions;
       const unsigned int      n_dofs      = formulation.n_dofs;

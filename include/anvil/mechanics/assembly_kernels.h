@@ -126,13 +126,20 @@ namespace anvil
     class StressDivergence
     {
     public:
-      explicit StressDivergence(const Context<dim> &context)
-        : context(context)
-        , f_bar(*context.formulation)
-      {}
+      /// @p planar_kernel false: the general kernel also where the planar one
+      /// applies (tests compare the two).
+      explicit StressDivergence(const Context<dim> &context, bool planar_kernel = true);
       void assemble(ScratchData<dim> &scratch, CopyData &copy) const;
 
     private:
+      /// assemble() for dim = 2 with the components interleaved (FESystem of
+      /// FE_Q^2: dof a has component a mod 2), @p N_DOFS shape functions:
+      /// the planar block structure and the sparsity of ∂F/∂u_a at
+      /// compile time (stress_divergence.cc).
+      template <unsigned int N_DOFS, bool HOOP>
+      void assemble_planar(ScratchData<dim> &scratch, CopyData &copy) const;
+      /// n_dofs of assemble_planar's layout, 0 if the element has another.
+      unsigned int planar_dofs = 0;
       void add_tangent(const PointValues        &p,
                        const dealii::Tensor<2, 3> &F_inv,
                        const dealii::Tensor<2, 3> &F_inv_T,

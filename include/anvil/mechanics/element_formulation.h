@@ -57,6 +57,9 @@ namespace anvil
       unsigned int                    n_nodes = 0;
       /// Index of the direction (k, L) in `directions`, −1 if not used.
       int                             where[3][3];
+      /// n_dofs if dim = 2 and dof a has component a mod 2 (FESystem of FE_Q^2)
+      /// with 8 or 18 dofs (Q1, Q2): the layout of the fixed-size planar paths; else 0.
+      unsigned int                    planar_dofs = 0;
 
       /// 3x3 F from the in-plane gradient (and the hoop stretch if axisymmetric).
       dealii::Tensor<2, 3> deformation_gradient(const dealii::Tensor<2, dim> &grad_u,
