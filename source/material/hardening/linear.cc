@@ -39,6 +39,19 @@ namespace anvil
       }
 
       bool          is_linear() const override { return true; }
+      bool          linear_form(LinearForm &form) const override
+      {
+        bool constant = false;
+        if (!thermal->linear_form(constant, form.omega))
+          return false;
+        form.theta_linear = !constant;
+        form.T_ref        = thermal->reference_temperature();
+        form.sigma0       = sigma0;
+        form.h            = h;
+        form.soft_sigma0  = soft_sigma0;
+        form.soft_h       = soft_h;
+        return true;
+      }
       StrengthLimit strength_limit() const override { return softening_limit(soft_sigma0); }
       bool is_nondecreasing(const double T) const override
       {
