@@ -52,6 +52,7 @@ namespace anvil
           {
             evaluate(increment, increment.temperature, increment.temperature_increment, rotated, t);
             finish(increment, request, t, response);
+            keep_for_audit(increment, rotated);
             return;
           }
         // Armero–Simo: the step's own heating changes the temperature the
@@ -84,6 +85,7 @@ namespace anvil
               throw MaterialPointError("the adiabatic temperature change did not converge");
           }
         finish(increment, inner, t, response);
+        keep_for_audit(increment, rotated);
         response.adiabatic_temperature_increment = x1;
         adiabatic_guess                          = x1;
         if (tangent)
@@ -150,24 +152,27 @@ namespace anvil
       }
 
     private:
-      /// σ̃ₙ = ΔR σₙ ΔRᵀ (raw): an update's return maps share it.
-      struct Rotated { double trial[6]; };
+      /// σ̃ₙ = ΔR σₙ ΔRᵀ (raw): an update's return maps share it; and its
+      /// entries below the diagonal, (1,0), (2,0), (2,1), as computed (the
+      /// audit's mean stress symmetrises the two, last_step()).
+      struct Rotated { double trial[6], lower[3]; };
       Rotated rotate(const Tensor<2, 3> &R) const;
 
       /// One return map at temperature T: what finish() turns into the
       /// response, and ΔT_ad (all the adiabatic iteration needs).
       struct Trial
       {
-        double T = 0, dT = 0, K = 0, G = 0, eth = 0, deth = 0, beta = 0;
+        // (Every number is set by evaluate(), none is read before.)
+        double T, dT, K, G, eth, deth, beta;
         double trial[6], de[6], s[6];
-        double tr_de = 0, norm_s = 0, q_trial = 0, dp = 0, H = 0;
+        double tr_de, norm_s, q_trial, dp, H;
         HardeningLaw::Value Y, Y_start;
         PerzynaLaw::Value   V;
         PerzynaLaw::Rate    rate;
-        bool                linear_return = false; // the closed form: Y.stress = Y_start.stress + h Δε̄
-        unsigned int        return_iterations = 0;
-        double              work = 0, dwork_dq = 0, tr_rev = 0, rho_c = 0;
-        double              adiabatic_temperature_increment = 0;
+        bool                linear_return; // the closed form: Y.stress = Y_start.stress + h Δε̄
+        unsigned int        return_iterations;
+        double              work, dwork_dq, tr_rev, rho_c;
+        double              adiabatic_temperature_increment;
       };
       /// Trial state, yield test, return map and heat sources at (T, ΔT).
       void evaluate(const MaterialIncrement &inc, double T, double dT, const Rotated &rotated,
@@ -181,6 +186,23 @@ namespace anvil
         const J2Model::Kernel &k = model.kernel();
         return k.inline_yield ? k.yield.evaluate(eps, T) : model.hardening->evaluate(eps, T);
       }
+      /// σ̄ = ½(σ̃ₙ + σ) and Δε of this update (J2Model::last_step()): the
+      /// operations of the audit's mean_stress(), entry for entry.
+      void keep_for_audit(const MaterialIncrement &inc, const Rotated &rotated)
+      {
+        static constexpr unsigned int row[6] = {0, 1, 2, 0, 0, 1}, col[6] = {0, 1, 2, 1, 2, 2};
+        for (unsigned int c = 0; c < 3; ++c)
+          audit_mean[c][c] = 0.5 * (rotated.trial[c] + current[c][c]);
+        for (unsigned int c = 3; c < 6; ++c)
+          audit_mean[row[c]][col[c]] =
+            0.5 * ((rotated.trial[c] + rotated.lower[c - 3]) * 0.5 + current[row[c]][col[c]]);
+        audit_strain = inc.strain_increment;
+      }
+
+    public:
+      SymmetricTensor<2, 3> audit_mean, audit_strain; // keep_for_audit()
+
+    private:
       static double equivalent_stress(const SymmetricTensor<2, 3> &sigma)
       {
         return std::sqrt(1.5) * deviator(sigma).norm();
@@ -341,6 +363,9 @@ namespace anvil
       for (unsigned int c = 0; c < 6; ++c)
         rotated.trial[c] = A[row[c]][0] * R[col[c]][0] + A[row[c]][1] * R[col[c]][1] +
                            A[row[c]][2] * R[col[c]][2];
+      for (unsigned int c = 3; c < 6; ++c)
+        rotated.lower[c - 3] = A[col[c]][0] * R[row[c]][0] + A[col[c]][1] * R[row[c]][1] +
+                               A[col[c]][2] * R[row[c]][2];
       return rotated;
     }
 
@@ -387,9 +412,8 @@ namespace anvil
       HardeningLaw::Value &Y = t.Y, &Y_start = t.Y_start;
       PerzynaLaw::Value   &V = t.V;
       PerzynaLaw::Rate    &rate = t.rate;
-      Y = Y_start = HardeningLaw::Value();
-      V           = PerzynaLaw::Value();
-      rate        = PerzynaLaw::Rate();
+      // Y, Y_start, V and rate are read only after a plastic return (dp > 0),
+      // which sets them.
       t.linear_return     = false;
       t.return_iterations = 0;
       if (model.plastic)
@@ -423,6 +447,7 @@ namespace anvil
                         throw no_plastic_solution(T);
                     }
                   dp                  = (q_trial - Y_start.stress) / (3 * G + h);
+                  V                   = PerzynaLaw::Value();
                   t.return_iterations = 1;
                   t.linear_return     = true;
                   // (∂σᵥ/∂T at the end of the step: finish(), if asked.)
@@ -600,6 +625,16 @@ namespace anvil
         }
     }
   } // namespace
+
+  void J2Model::last_step(const MaterialPoint                &point,
+                          const SymmetricTensor<2, 3>       *&mean_stress,
+                          const SymmetricTensor<2, 3>       *&strain_increment) const
+  {
+    // Every point of a J2Model is a J2Point (create_point(s)).
+    const auto &p    = static_cast<const J2Point &>(point);
+    mean_stress      = &p.audit_mean;
+    strain_increment = &p.audit_strain;
+  }
 
   void J2Model::prepare_kernel() const
   {

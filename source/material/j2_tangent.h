@@ -14,15 +14,22 @@ namespace anvil
     using dealii::SymmetricTensor;
 
     /// C += s a⊗b on raw storage (deal.II's outer_product() and operator+= build
-    /// two 6x6 temporaries for it).
+    /// two 6x6 temporaries for it), over the nonzero entries of a and b only:
+    /// plane problems have no out-of-plane shear, an elastic adiabatic point
+    /// no ∂ΔT_ad/∂σ̃ₙ (b = 0), and adding s (0 · b) changes no entry's value.
     inline void add_outer_product(SymmetricTensor<4, 3> &C, const double s,
                                   const SymmetricTensor<2, 3> &a, const SymmetricTensor<2, 3> &b)
     {
       double       *c  = C.begin_raw();
       const double *ar = a.begin_raw(), *br = b.begin_raw();
-      for (unsigned int p = 0; p < 6; ++p)
-        for (unsigned int q = 0; q < 6; ++q)
-          c[6 * p + q] += s * (ar[p] * br[q]);
+      unsigned int  columns[6], n = 0;
+      for (unsigned int q = 0; q < 6; ++q)
+        if (br[q] != 0)
+          columns[n++] = q;
+      for (unsigned int p = 0; p < 6 && n > 0; ++p)
+        if (ar[p] != 0)
+          for (unsigned int k = 0; k < n; ++k)
+            c[6 * p + columns[k]] += s * (ar[p] * br[columns[k]]);
     }
 
     /// I_sym on raw storage: 1 on the normal, 1/2 on the shear diagonal.
