@@ -354,9 +354,26 @@ namespace anvil
     { // σ̃ = ΔR σ_n ΔRᵀ; σ_n as a full matrix, A = ΔR σ_n, σ̃_ij = A_il ΔR_jl.
       static constexpr unsigned int row[6] = {0, 1, 2, 0, 0, 1}, col[6] = {0, 1, 2, 1, 2, 2};
       Rotated             rotated;
-      const double *sn = stress_n.begin_raw(), S[3][3] = {{sn[0], sn[3], sn[4]}, {sn[3], sn[1], sn[5]},
-                                                          {sn[4], sn[5], sn[2]}};
-      double A[3][3];
+      const double *sn = stress_n.begin_raw();
+      if (R[0][2] == 0 && R[1][2] == 0 && R[2][0] == 0 && R[2][1] == 0 && sn[4] == 0 && sn[5] == 0)
+        {
+          // Plane strain and axisymmetric: ΔR and σₙ are [2x2 block, 0; 0, (2,2)].
+          // The products below are the general ones' nonzero terms (the others
+          // add exact zeros), so the values are the same.
+          const double A00 = R[0][0] * sn[0] + R[0][1] * sn[3], A01 = R[0][0] * sn[3] + R[0][1] * sn[1];
+          const double A10 = R[1][0] * sn[0] + R[1][1] * sn[3], A11 = R[1][0] * sn[3] + R[1][1] * sn[1];
+          const double A22 = R[2][2] * sn[2];
+          rotated.trial[0] = A00 * R[0][0] + A01 * R[0][1];
+          rotated.trial[1] = A10 * R[1][0] + A11 * R[1][1];
+          rotated.trial[2] = A22 * R[2][2];
+          rotated.trial[3] = A00 * R[1][0] + A01 * R[1][1];
+          rotated.trial[4] = rotated.trial[5] = 0;
+          rotated.lower[0]                    = A10 * R[0][0] + A11 * R[0][1];
+          rotated.lower[1] = rotated.lower[2] = 0;
+          return rotated;
+        }
+      const double S[3][3] = {{sn[0], sn[3], sn[4]}, {sn[3], sn[1], sn[5]}, {sn[4], sn[5], sn[2]}};
+      double       A[3][3];
       for (unsigned int i = 0; i < 3; ++i)
         for (unsigned int l = 0; l < 3; ++l)
           A[i][l] = R[i][0] * S[0][l] + R[i][1] * S[1][l] + R[i][2] * S[2][l];
