@@ -29,13 +29,8 @@ namespace anvil
 
       Value evaluate(const double eps, const double T) const override
       {
-        const double theta = thermal->factor(T), dtheta = thermal->derivative(T);
-        Value        v;
-        v.stress                 = scale(soft_sigma0, theta) * sigma0 + scale(soft_h, theta) * h * eps;
-        v.slope                  = scale(soft_h, theta) * h;
-        v.temperature_derivative = scale_derivative(soft_sigma0, dtheta) * sigma0 +
-                                   scale_derivative(soft_h, dtheta) * h * eps;
-        return v;
+        return linear_value(sigma0, h, soft_sigma0, soft_h, thermal->factor(T),
+                            thermal->derivative(T), eps);
       }
 
       bool          is_linear() const override { return true; }

@@ -81,12 +81,7 @@ namespace anvil
       {
         const double theta = theta_linear ? 1 - omega * (T - T_ref) : 1.;
         const double dtheta = theta_linear ? -omega : 0.;
-        Value        v;
-        v.stress                 = scale(soft_sigma0, theta) * sigma0 + scale(soft_h, theta) * h * eps;
-        v.slope                  = scale(soft_h, theta) * h;
-        v.temperature_derivative = scale_derivative(soft_sigma0, dtheta) * sigma0 +
-                                   scale_derivative(soft_h, dtheta) * h * eps;
-        return v;
+        return linear_value(sigma0, h, soft_sigma0, soft_h, theta, dtheta, eps);
       }
       bool is_nondecreasing(const double T) const
       {
@@ -140,6 +135,20 @@ namespace anvil
     static double scale_derivative(const bool is_softened, const double dtheta)
     {
       return is_softened ? dtheta : 0.;
+    }
+
+    /// σᵥ = θ_σ σ₀ + θ_h h ε̄ (eq. 16; θ_σ, θ_h = θ(T) where softened, eq. 35),
+    /// its slope and ∂/∂T from θ and dθ/dT: the linear law, and its LinearForm.
+    static Value linear_value(const double sigma0, const double h, const bool soft_sigma0,
+                              const bool soft_h, const double theta, const double dtheta,
+                              const double eps)
+    {
+      Value v;
+      v.stress                 = scale(soft_sigma0, theta) * sigma0 + scale(soft_h, theta) * h * eps;
+      v.slope                  = scale(soft_h, theta) * h;
+      v.temperature_derivative = scale_derivative(soft_sigma0, dtheta) * sigma0 +
+                                 scale_derivative(soft_h, dtheta) * h * eps;
+      return v;
     }
 
     std::unique_ptr<ThermalSoftening> thermal;
