@@ -14,14 +14,20 @@ namespace anvil
     using dealii::SymmetricTensor;
 
     /// C += s a⊗b on raw storage (deal.II's outer_product() and operator+= build
-    /// two 6x6 temporaries for it).
+    /// two 6x6 temporaries for it). Entries where a or b is zero are skipped
+    /// (adding s (0 · b) changes no entry's value): nothing if b = 0 (an elastic
+    /// adiabatic point has no ∂ΔT_ad/∂σ̃ₙ), the 4x4 block of the normal and
+    /// (0,1) components if the out-of-plane shears are zero (plane problems).
     inline void add_outer_product(SymmetricTensor<4, 3> &C, const double s,
                                   const SymmetricTensor<2, 3> &a, const SymmetricTensor<2, 3> &b)
     {
       double       *c  = C.begin_raw();
       const double *ar = a.begin_raw(), *br = b.begin_raw();
-      for (unsigned int p = 0; p < 6; ++p)
-        for (unsigned int q = 0; q < 6; ++q)
+      if (br[0] == 0 && br[1] == 0 && br[2] == 0 && br[3] == 0 && br[4] == 0 && br[5] == 0)
+        return;
+      const unsigned int n = ar[4] == 0 && ar[5] == 0 && br[4] == 0 && br[5] == 0 ? 4 : 6;
+      for (unsigned int p = 0; p < n; ++p)
+        for (unsigned int q = 0; q < n; ++q)
           c[6 * p + q] += s * (ar[p] * br[q]);
     }
 

@@ -72,9 +72,21 @@ namespace anvil
       // dv½ = det(½(F + F_n)) dV: the mid configuration Δε lives on.
       const double dv_half = determinant(0.5 * (F + F_old)) * p.w;
 
-      // The material's stress power over the step, on its own kinematics (F̄ with F-bar).
-      const SymmetricTensor<2, 3> sigma_bar = mean_stress(p.kin, sigma_n, r.stress);
-      terms[audit_material_work] = (sigma_bar * p.kin.strain_increment) * dv_half;
+      // The material's stress power over the step, on its own kinematics (F̄ with F-bar):
+      // a J2 point kept σ̄ and Δε of its last update (J2Model::last_step()), the
+      // same numbers as from its kinematics here.
+      const SymmetricTensor<2, 3> *mean = nullptr, *strain = nullptr;
+      SymmetricTensor<2, 3>        mean_here;
+      if (j2)
+        j2->last_step(point, mean, strain);
+      else
+        {
+          mean_here = mean_stress(p.kin, sigma_n, r.stress);
+          mean      = &mean_here;
+          strain    = &p.kin.strain_increment;
+        }
+      const SymmetricTensor<2, 3> &sigma_bar = *mean;
+      terms[audit_material_work] = (sigma_bar * *strain) * dv_half;
       // What the internal force works with: the true F (∫ σ : ∇ₓδv dv, stress_divergence.cc).
       if (context.formulation->f_bar)
         {
@@ -212,16 +224,18 @@ namespace anvil
     void MaterialPointUpdate<dim>::audit(const CellIterator<dim> &cell, ScratchData<dim> &scratch,
                                          CopyData &copy) const
     {
-      // The kinematics of update() at the same u (bit for bit: the same
+      // F and F_n of update() at the same u (bit for bit: the same
       // operations), the stresses and plastic strains the points hold from
-      // that update, and the plastic work rate it stored.
+      // that update, and the plastic work rate it stored. A J2 point kept
+      // what the audit needs of the material's kinematics (F̄ with F-bar):
+      // those are computed only for another law.
       const Formulation<dim>    &formulation = *context.formulation;
       const ReferenceCellValues &ref         = scratch.cell;
-      if (formulation.f_bar)
-        f_bar.evaluate_centre(scratch);
       auto                 cell_points = (*context.points)[cell];
       const MaterialModel &model       = *context.materials->at(cell->material_id());
       const auto          *j2          = dynamic_cast<const J2Model *>(&model);
+      if (formulation.f_bar && !j2)
+        f_bar.evaluate_centre(scratch);
       MaterialIncrement    increment;
       increment.temperature = context.reference_temperature; // without a temperature field
       for (unsigned int q = 0; q < scratch.points.size(); ++q)
@@ -230,11 +244,14 @@ namespace anvil
           const double       R     = formulation.radius(ref, q);
           const Tensor<2, 3> F     = formulation.deformation_gradient(ref, q, scratch.local_u, R);
           const Tensor<2, 3> F_old = formulation.deformation_gradient(ref, q, scratch.local_u_old, R);
-          double             beta  = 1;
-          Tensor<2, 3>       F_mat = F, F_mat_old = F_old;
-          if (formulation.f_bar)
-            F_mat = f_bar.material_gradient(scratch, F, F_old, beta, F_mat_old);
-          p.kin.reinit(F_mat, F_mat_old, formulation.objective_rate, kinematics_planar_path);
+          if (!j2)
+            {
+              double       beta  = 1;
+              Tensor<2, 3> F_mat = F, F_mat_old = F_old;
+              if (formulation.f_bar)
+                F_mat = f_bar.material_gradient(scratch, F, F_old, beta, F_mat_old);
+              p.kin.reinit(F_mat, F_mat_old, formulation.objective_rate, kinematics_planar_path);
+            }
           MaterialPoint &point                  = *cell_points[q];
           p.response.stress                     = point.stress();
           p.response.equivalent_plastic_strain = point.equivalent_plastic_strain();

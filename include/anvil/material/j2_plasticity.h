@@ -141,7 +141,35 @@ namespace anvil
     bool johnson_cook = false;    // true: the Johnson-Cook model (rate below)
     JohnsonCookRate johnson_cook_rate; // active(): multiplicative rate factor, no Perzyna
 
+    /**
+     * What the points read at every update, found once from the parsed laws
+     * (create_point(s)): the hardening law as inline numbers where it is
+     * linear with linear or no softening.
+     */
+    struct Kernel
+    {
+      bool                     inline_yield = false; // yield below, else hardening->evaluate()
+      HardeningLaw::LinearForm yield;
+      bool                     linear = false; // hardening->is_linear()
+    };
+    /// Valid once a point exists (create_point(s) prepares it).
+    const Kernel &kernel() const { return kernel_cache; }
+
+    /**
+     * The energy audit's view of the last update of @p point (a point of this
+     * model): the step's mean stress σ̄ = ½(ΔR σₙ ΔRᵀ + σ), symmetrised with
+     * the operations of the audit's own (material_point_update.cc), and the
+     * strain increment Δε. Every update keeps them (12 numbers per point), so
+     * the audit at commit needs neither ΔR nor the material's kinematics.
+     */
+    void last_step(const MaterialPoint                  &point,
+                   const dealii::SymmetricTensor<2, 3> *&mean_stress,
+                   const dealii::SymmetricTensor<2, 3> *&strain_increment) const;
+
   private:
+    void                                        prepare_kernel() const;
+    mutable std::once_flag                      kernel_once;
+    mutable Kernel                              kernel_cache;
     mutable std::once_flag                      strength_limit_once;
     mutable HardeningLaw::StrengthLimit         strength_limit_cache;
   };

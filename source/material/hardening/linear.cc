@@ -29,16 +29,24 @@ namespace anvil
 
       Value evaluate(const double eps, const double T) const override
       {
-        const double theta = thermal->factor(T), dtheta = thermal->derivative(T);
-        Value        v;
-        v.stress                 = scale(soft_sigma0, theta) * sigma0 + scale(soft_h, theta) * h * eps;
-        v.slope                  = scale(soft_h, theta) * h;
-        v.temperature_derivative = scale_derivative(soft_sigma0, dtheta) * sigma0 +
-                                   scale_derivative(soft_h, dtheta) * h * eps;
-        return v;
+        return linear_value(sigma0, h, soft_sigma0, soft_h, thermal->factor(T),
+                            thermal->derivative(T), eps);
       }
 
       bool          is_linear() const override { return true; }
+      bool          linear_form(LinearForm &form) const override
+      {
+        bool constant = false;
+        if (!thermal->linear_form(constant, form.omega))
+          return false;
+        form.theta_linear = !constant;
+        form.T_ref        = thermal->reference_temperature();
+        form.sigma0       = sigma0;
+        form.h            = h;
+        form.soft_sigma0  = soft_sigma0;
+        form.soft_h       = soft_h;
+        return true;
+      }
       StrengthLimit strength_limit() const override { return softening_limit(soft_sigma0); }
       bool is_nondecreasing(const double T) const override
       {

@@ -22,6 +22,12 @@ namespace anvil
       }
       double factor(const double T) const override { return 1 - omega * (T - T_ref); }
       double derivative(double) const override { return -omega; }
+      bool   linear_form(bool &constant, double &omega_out) const override
+      {
+        constant  = false;
+        omega_out = omega;
+        return true;
+      }
       double vanishing_temperature() const override
       {
         return omega > 0 ? T_ref + 1 / omega : ThermalSoftening::vanishing_temperature();

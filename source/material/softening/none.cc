@@ -10,6 +10,11 @@ namespace anvil
     public:
       double factor(double) const override { return 1; }
       double derivative(double) const override { return 0; }
+      bool   linear_form(bool &constant, double &) const override
+      {
+        constant = true;
+        return true;
+      }
     };
   } // namespace
 } // namespace anvil

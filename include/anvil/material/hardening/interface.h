@@ -63,6 +63,34 @@ namespace anvil
     /// rate-independent return has a closed form.
     virtual bool is_linear() const { return false; }
 
+    /**
+     * The linear law σᵥ = θ_σ(T) σ₀ + θ_h(T) h ε̄ (seed eq. 16) with θ = 1 or
+     * θ = 1 − ω (T − T_ref) (eq. 35) as plain numbers, so that a material point
+     * evaluates it inline: through evaluate() each evaluation is a virtual call
+     * and two more for θ, several times per update. evaluate() below is the
+     * law's own arithmetic, operation for operation (the same bits).
+     */
+    struct LinearForm
+    {
+      double sigma0 = 0, h = 0;
+      bool   soft_sigma0 = false, soft_h = false;
+      bool   theta_linear = false; // θ = 1 − ω (T − T_ref); else θ = 1
+      double omega = 0, T_ref = 0;
+
+      Value evaluate(const double eps, const double T) const
+      {
+        const double theta = theta_linear ? 1 - omega * (T - T_ref) : 1.;
+        const double dtheta = theta_linear ? -omega : 0.;
+        return linear_value(sigma0, h, soft_sigma0, soft_h, theta, dtheta, eps);
+      }
+      bool is_nondecreasing(const double T) const
+      {
+        return scale(soft_h, theta_linear ? 1 - omega * (T - T_ref) : 1.) * h >= 0;
+      }
+    };
+    /// The law as a LinearForm, if it is one (false by default).
+    virtual bool linear_form(LinearForm &) const { return false; }
+
     /// σᵥ(·, T) is nondecreasing in ε̄ ≥ 0 at temperature @p T: then σᵥ stays
     /// positive over a plastic increment once it is positive at its start.
     /// (false is always safe: the return map then checks its bracket.)
@@ -107,6 +135,20 @@ namespace anvil
     static double scale_derivative(const bool is_softened, const double dtheta)
     {
       return is_softened ? dtheta : 0.;
+    }
+
+    /// σᵥ = θ_σ σ₀ + θ_h h ε̄ (eq. 16; θ_σ, θ_h = θ(T) where softened, eq. 35),
+    /// its slope and ∂/∂T from θ and dθ/dT: the linear law, and its LinearForm.
+    static Value linear_value(const double sigma0, const double h, const bool soft_sigma0,
+                              const bool soft_h, const double theta, const double dtheta,
+                              const double eps)
+    {
+      Value v;
+      v.stress                 = scale(soft_sigma0, theta) * sigma0 + scale(soft_h, theta) * h * eps;
+      v.slope                  = scale(soft_h, theta) * h;
+      v.temperature_derivative = scale_derivative(soft_sigma0, dtheta) * sigma0 +
+                                 scale_derivative(soft_h, dtheta) * h * eps;
+      return v;
     }
 
     std::unique_ptr<ThermalSoftening> thermal;

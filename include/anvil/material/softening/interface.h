@@ -43,6 +43,10 @@ namespace anvil
     /// T_ref in K: where the yield parameters are given (θ = 1 for the built-in laws).
     double reference_temperature() const { return T_ref; }
 
+    /// θ = 1 (@p constant) or θ = 1 − @p omega (T − T_ref) exactly as factor()
+    /// computes it: HardeningLaw::LinearForm (false: neither).
+    virtual bool linear_form(bool & /*constant*/, double & /*omega*/) const { return false; }
+
     /**
      * The lowest temperature above T_ref where θ reaches 0, K (+inf if it
      * never does): T_ref + 1/ω (linear, ω > 0), T_melt (johnson-cook), the
