@@ -141,10 +141,11 @@ namespace anvil
               if (count > 0)
                 relative -= master / count;
               // The node's path over the look-ahead, enlarged by the step's
-              // margin (1.5 faces) and half a face more.
+              // margin (1.5 faces): without relative motion the step's own
+              // candidates, no more (each extra coupling is KLU fill-in).
               const Point<dim> ahead = x_old[n] + look_ahead_steps * relative;
               BoundingBox<dim> path(std::vector<Point<dim>>{x_old[n], ahead});
-              path.extend(2 * largest_face);
+              path.extend(1.5 * largest_face);
               hits.clear();
               tree.query(bgi::intersects(path), std::back_inserter(hits));
               for (const auto &h : hits)
