@@ -9,8 +9,8 @@ Independent answers:
   apart) do so at different steps, so the pattern grows at almost every step
   of the slide (main: 75 of 79); looking 10 steps (0.5 mm) ahead, a pattern
   lasts until the step's margin (1.5 faces) leaves the look-ahead box
-  (0.5 mm + 2 faces): ~(0.5 + 0.33 - 0.25) / 0.05 = 11 steps, so at most
-  1 + 75 / 11 + the pressing's = 10 patterns;
+  (0.5 mm + 1.5 faces): ~0.5 / 0.05 = 10 steps, so at most
+  1 + 75 / 10 + the pressing's = 10 patterns;
 - the answers: the extra couplings are zero entries, so no number in the
   matrix changes; only KLU's pivot order may move round-off: every column of
   contact.csv, newton.csv, energy.csv and the quantities of interest agree
