@@ -23,15 +23,47 @@ namespace anvil
     {
       std::vector<Point<dim>>                               x_ref; // the nodes the tree was built at
       RTree<std::pair<BoundingBox<dim>, unsigned int>>      tree;
+      std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits; // a query's, kept for its storage
     };
     std::map<std::pair<const Surface *, double>, Side> sides; // by master side and margin
   };
 
+  namespace
+  {
+    /// Whether the box of the face's @p nodes at @p x, enlarged by @p margin,
+    /// holds @p point, computed as BoundingBox(corners).extend(margin) is.
+    template <int dim>
+    bool box_holds(const std::vector<unsigned int> &nodes, const std::vector<Point<dim>> &x,
+                   const double margin, const Point<dim> &point)
+    {
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          double lo = std::numeric_limits<double>::max(), hi = -lo;
+          for (const auto n : nodes)
+            {
+              lo = std::min(lo, x[n][d]);
+              hi = std::max(hi, x[n][d]);
+            }
+          lo -= margin;
+          hi += margin;
+          if (!(lo <= point[d] && point[d] <= hi))
+            return false;
+        }
+      return true;
+    }
+  } // namespace
+
+  template <int dim>
+  bool ContactProblem<dim>::face_box_holds(const unsigned int f, const std::vector<Point<dim>> &x,
+                                           const double margin, const Point<dim> &point) const
+  {
+    return box_holds<dim>(faces[f].nodes, x, margin, point);
+  }
+
   template <int dim>
   void ContactProblem<dim>::candidate_faces(
     const Surface &master, const std::vector<Point<dim>> &x, const double margin,
-    const std::vector<unsigned int> &slaves,
-    std::map<unsigned int, std::vector<unsigned int>> &candidates) const
+    const std::vector<unsigned int> &slaves, CandidateLists &candidates) const
   {
     namespace bgi = boost::geometry::index;
     // The boxes are built with a slack beyond the margin and kept until a
@@ -67,33 +99,36 @@ namespace anvil
         side.tree  = pack_rtree(boxes);
         side.x_ref = x;
       }
-    std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
+    std::vector<std::pair<BoundingBox<dim>, unsigned int>> &hits = side.hits;
+    candidates.start.assign(1, 0);
+    candidates.faces.clear();
     for (const auto s : slaves)
       {
         hits.clear();
         side.tree.query(bgi::intersects(x[s]), std::back_inserter(hits));
-        auto &list = candidates[s];
         for (const auto &h : hits)
-          {
-            // The current box of the face, enlarged by the margin, as
-            // BoundingBox(corners).extend(margin) computes it.
-            bool inside = true;
-            for (unsigned int d = 0; d < dim && inside; ++d)
-              {
-                double lo = std::numeric_limits<double>::max(), hi = -lo;
-                for (const auto n : faces[h.second].nodes)
-                  {
-                    lo = std::min(lo, x[n][d]);
-                    hi = std::max(hi, x[n][d]);
-                  }
-                lo -= margin;
-                hi += margin;
-                inside = lo <= x[s][d] && x[s][d] <= hi;
-              }
-            if (inside)
-              list.push_back(h.second);
-          }
-        std::sort(list.begin(), list.end());
+          if (face_box_holds(h.second, x, margin, x[s]))
+            candidates.faces.push_back(h.second);
+        std::sort(candidates.faces.begin() + candidates.start.back(), candidates.faces.end());
+        candidates.start.push_back(candidates.faces.size());
+      }
+  }
+
+  template <int dim>
+  void ContactProblem<dim>::filter_candidates(const CandidateLists &superset,
+                                              const std::vector<Point<dim>> &x, const double margin,
+                                              const std::vector<unsigned int> &slaves,
+                                              CandidateLists &candidates) const
+  {
+    candidates.start.assign(1, 0);
+    candidates.faces.clear();
+    for (unsigned int k = 0; k < slaves.size(); ++k)
+      {
+        // Sorted already: a sorted list filtered.
+        for (unsigned int i = superset.start[k]; i < superset.start[k + 1]; ++i)
+          if (face_box_holds(superset.faces[i], x, margin, x[slaves[k]]))
+            candidates.faces.push_back(superset.faces[i]);
+        candidates.start.push_back(candidates.faces.size());
       }
   }
 

@@ -32,7 +32,7 @@ namespace anvil
 
       /// Node @p node (0: the slave, 1...: the master nodes) of the flat coordinate vector.
       template <int dim, typename Number>
-      Tensor<1, dim, Number> node(const std::vector<Number> &coordinates, const unsigned int node)
+      Tensor<1, dim, Number> node(const Number *coordinates, const unsigned int node)
       {
         Tensor<1, dim, Number> x;
         for (unsigned int d = 0; d < dim; ++d)
@@ -57,16 +57,20 @@ namespace anvil
       {
         Number                 gap = 0;
         Tensor<1, dim, Number> normal, relative_increment;
-        std::vector<Number>    shape;
-        std::vector<double>    xi;
-        bool                   inside = true;
+        // Fixed-size storage: an evaluation allocates nothing on the heap
+        // (the tube evaluates ~400 nodes per Newton iteration, most apart).
+        std::array<Number, 4>  shape;
+        unsigned int           n_shape = 0;
+        std::array<double, 2>  xi       = {{0, 0}};
+        unsigned int           n_xi     = 0;
+        bool                   inside   = true;
       };
 
       /// 2D: the straight segment x_m(ξ) = (1 − ξ) x₀ + ξ x₁; n its left normal.
       template <typename Number>
-      PairGeometry<2, Number> segment_geometry(const std::vector<Number>    &coordinates,
-                                               const Tensor<1, 2>           &slave_old,
-                                               const std::vector<Point<2>> &master_old)
+      PairGeometry<2, Number> segment_geometry(const Number       *coordinates,
+                                               const Tensor<1, 2> &slave_old,
+                                               const Point<2>     *master_old)
       {
         using std::sqrt;
         PairGeometry<2, Number>      g;
@@ -79,8 +83,11 @@ namespace anvil
         g.normal[0]     = -edge[1] / length;
         g.normal[1]     = edge[0] / length;
         g.gap           = dot(xs - x0, g.normal); // = (x_s − x_m(ξ)) · n
-        g.shape         = {1 - xi, xi};
-        g.xi            = {value_of(xi)};
+        g.shape[0]      = 1 - xi;
+        g.shape[1]      = xi;
+        g.n_shape       = 2;
+        g.xi[0]         = value_of(xi);
+        g.n_xi          = 1;
         g.inside        = g.xi[0] >= -parameter_tolerance && g.xi[0] <= 1 + parameter_tolerance;
         for (unsigned int d = 0; d < 2; ++d)
           {
@@ -149,9 +156,9 @@ namespace anvil
 
       /// 3D: the bilinear facet; closest point by Newton in (ξ, η).
       template <typename Number>
-      PairGeometry<3, Number> facet_geometry(const std::vector<Number>    &coordinates,
-                                             const Tensor<1, 3>           &slave_old,
-                                             const std::vector<Point<3>> &master_old)
+      PairGeometry<3, Number> facet_geometry(const Number       *coordinates,
+                                             const Tensor<1, 3> &slave_old,
+                                             const Point<3>     *master_old)
       {
         using std::sqrt;
         PairGeometry<3, Number>    g;
@@ -195,9 +202,11 @@ namespace anvil
         g.gap = dot(xs - facet.position(xi, eta), g.normal);
 
         const auto N = facet.shape(xi, eta);
-        g.shape.assign(N.begin(), N.end());
-        g.xi     = {value_of(xi), value_of(eta)};
-        g.inside = converged;
+        g.shape   = N;
+        g.n_shape = 4;
+        g.xi      = {{value_of(xi), value_of(eta)}};
+        g.n_xi    = 2;
+        g.inside  = converged;
         for (const double c : g.xi)
           g.inside = g.inside && c >= -parameter_tolerance && c <= 1 + parameter_tolerance;
         for (unsigned int d = 0; d < 3; ++d)
@@ -219,7 +228,7 @@ namespace anvil
        * Newton to chase; doc/contact.md, "Concave corners").
        */
       template <int dim, typename Number>
-      PairGeometry<dim, Number> vertex_geometry(const std::vector<Number> &coordinates,
+      PairGeometry<dim, Number> vertex_geometry(const Number              *coordinates,
                                                 const Tensor<1, dim>      &slave_old,
                                                 const Tensor<1, dim>      &vertex_old)
       {
@@ -231,7 +240,8 @@ namespace anvil
         for (unsigned int i = 0; i < dim; ++i)
           g.normal[i] = d[i] / length;
         g.gap   = -length;
-        g.shape = {Number(1.)};
+        g.shape[0] = Number(1.);
+        g.n_shape  = 1;
         for (unsigned int i = 0; i < dim; ++i)
           g.relative_increment[i] = xs[i] - slave_old[i] - (xv[i] - vertex_old[i]);
         return g;
@@ -239,16 +249,16 @@ namespace anvil
 
       /// The rigid tool: gap and normal from its projection, relative to its translation.
       template <int dim, typename Number>
-      PairGeometry<dim, Number> tool_geometry(const std::vector<Number> &coordinates,
-                                              const Tensor<1, dim>      &slave_old,
-                                              const RigidTool<dim>      &tool,
-                                              const double               t,
-                                              const double               t_old)
+      PairGeometry<dim, Number> tool_geometry(const Number         *coordinates,
+                                              const Tensor<1, dim> &slave_old,
+                                              const RigidTool<dim> &tool,
+                                              const Tensor<1, dim> &u,
+                                              const Tensor<1, dim> &u_old)
       {
         PairGeometry<dim, Number>    g;
         const Tensor<1, dim, Number> xs = node<dim>(coordinates, 0);
-        tool.project(xs, t, g.gap, g.normal);
-        const Tensor<1, dim> tool_increment = tool.displacement(t) - tool.displacement(t_old);
+        tool.project_displaced(xs, u, g.gap, g.normal);
+        const Tensor<1, dim> tool_increment = u - u_old;
         for (unsigned int d = 0; d < dim; ++d)
           g.relative_increment[d] = xs[d] - slave_old[d] - tool_increment[d];
         return g;
@@ -326,10 +336,14 @@ namespace anvil
       }
 
       /// d r_i / d x_j into @p tangent (nothing to do for plain numbers).
-      void copy_derivatives(const std::vector<double> &, FullMatrix<double> &) {}
-      void copy_derivatives(const std::vector<ADNumber> &r, FullMatrix<double> &tangent)
+      template <std::size_t N>
+      void copy_derivatives(const std::array<double, N> &, unsigned int, FullMatrix<double> &)
+      {}
+      template <std::size_t N>
+      void copy_derivatives(const std::array<ADNumber, N> &r, const unsigned int n,
+                            FullMatrix<double> &tangent)
       {
-        for (unsigned int i = 0; i < r.size(); ++i)
+        for (unsigned int i = 0; i < n; ++i)
           if (r[i].size() > 0)
             for (unsigned int j = 0; j < tangent.n(); ++j)
               tangent(i, j) = r[i].dx(j);
@@ -344,7 +358,7 @@ namespace anvil
       {
         result.gap               = value_of(g.gap);
         result.normal            = values(g.normal);
-        result.xi                = g.xi;
+        result.xi.assign(g.xi.begin(), g.xi.begin() + g.n_xi); // capacity kept: no allocation
         result.projection_inside = g.inside;
         if (!g.inside || result.gap > 0)
           return; // no contact: zero forces, residual and tangent; empty new state
@@ -352,17 +366,18 @@ namespace anvil
         const ContactForces<dim, Number> f = contact_forces(g, state, law);
 
         // r_s = −t_N n + t_T, r_a = N_a (t_N n − t_T)
-        std::vector<Number> r(result.residual.size());
+        const unsigned int         n = result.residual.size();
+        std::array<Number, 5 * dim> r;
         for (unsigned int d = 0; d < dim; ++d)
           {
             const Number on_slave = -f.normal_force * g.normal[d] + f.tangential_force[d];
             r[d]                  = on_slave;
-            for (unsigned int a = 0; a < g.shape.size(); ++a)
+            for (unsigned int a = 0; a < g.n_shape; ++a)
               r[dim * (a + 1) + d] = -g.shape[a] * on_slave;
           }
-        for (unsigned int i = 0; i < r.size(); ++i)
+        for (unsigned int i = 0; i < n; ++i)
           result.residual[i] = value_of(r[i]);
-        copy_derivatives(r, result.tangent);
+        copy_derivatives(r, n, result.tangent);
 
         result.in_contact       = true;
         result.sliding          = f.sliding;
@@ -375,27 +390,50 @@ namespace anvil
         result.new_state.tangential_force = result.tangential_force;
       }
 
+      /// @p result as a fresh one of @p n coordinates, its storage reused.
+      template <int dim>
+      void reset(ContactResult<dim> &result, const unsigned int n, const bool tangent)
+      {
+        result.in_contact = result.sliding = false;
+        result.projection_inside = true;
+        result.gap = result.normal_force = result.frictional_work = 0;
+        result.normal = result.tangential_force = result.slip_increment = Tensor<1, dim>();
+        result.xi.clear();
+        result.new_state = NodeState<dim>();
+        if (result.residual.size() != n)
+          result.residual.reinit(n);
+        else
+          std::fill(result.residual.begin(), result.residual.end(), 0.);
+        if (tangent)
+          {
+            if (result.tangent.m() != n || result.tangent.n() != n)
+              result.tangent.reinit(n, n);
+            else
+              std::fill(&result.tangent(0, 0), &result.tangent(0, 0) + n * n, 0.);
+          }
+      }
+
       /**
        * Evaluate a pair whose current coordinates are @p coordinates (slave,
-       * then master nodes): with doubles for the residual only, or with one
-       * forward-AD derivative per coordinate for the tangent as well.
-       * @p geometry(coordinates) returns the PairGeometry for either number type.
+       * then master nodes; @p n of them) into @p result: with doubles for the
+       * residual only, or with one forward-AD derivative per coordinate for
+       * the tangent as well. @p geometry(coordinates) returns the
+       * PairGeometry for either number type.
        */
       template <int dim, typename GeometryFunction>
-      ContactResult<dim> evaluate(const std::vector<double> &coordinates,
-                                  const GeometryFunction    &geometry,
-                                  const NodeState<dim>      &state,
-                                  const FrictionLaw         &law,
-                                  const bool                 tangent)
+      void evaluate(ContactResult<dim>        &result,
+                    const double              *coordinates,
+                    const unsigned int         n,
+                    const GeometryFunction    &geometry,
+                    const NodeState<dim>      &state,
+                    const FrictionLaw         &law,
+                    const bool                 tangent)
       {
         AssertThrow(law.mu_dynamic <= law.mu_static,
                     ExcMessage("contact: the dynamic friction coefficient must not exceed the static one"));
-        const unsigned int n = coordinates.size();
-        ContactResult<dim> result;
-        result.residual.reinit(n);
+        reset(result, n, tangent);
         if (tangent)
           {
-            result.tangent.reinit(n, n);
             // Most nodes a tool or a face is asked about are not touching it:
             // the geometry in doubles decides that (its values are the AD
             // values, operation for operation), and the derivatives are only
@@ -404,16 +442,15 @@ namespace anvil
             if (!g.inside || g.gap > 0)
               {
                 evaluate_pair(g, state, law, result);
-                return result;
+                return;
               }
-            std::vector<ADNumber> x(n);
+            std::array<ADNumber, 5 * dim> x;
             for (unsigned int i = 0; i < n; ++i)
               x[i] = ADNumber(n, i, coordinates[i]);
-            evaluate_pair(geometry(x), state, law, result);
+            evaluate_pair(geometry(x.data()), state, law, result);
           }
         else
           evaluate_pair(geometry(coordinates), state, law, result);
-        return result;
       }
     } // namespace
 
@@ -425,6 +462,33 @@ namespace anvil
       // outward on faces 0 (x = 0) and 3 (y = 1). 3D: x_ξ × x_η is +e_k on
       // faces 2k and 2k + 1, outward on the odd ones.
       return dim == 2 ? (face == 0 || face == 3) : (face % 2 == 1);
+    }
+
+    template <int dim>
+    void node_to_segment(ContactResult<dim> &result,
+                         const Point<dim>   &slave,
+                         const Point<dim>   &slave_old,
+                         const Point<dim>   *master,
+                         const Point<dim>   *master_old,
+                         const NodeState<dim> &state,
+                         const FrictionLaw    &law,
+                         const bool            tangent)
+    {
+      constexpr unsigned int n_master = dim == 2 ? 2 : 4;
+      std::array<double, dim * (1 + n_master)> coordinates;
+      for (unsigned int d = 0; d < dim; ++d)
+        coordinates[d] = slave[d];
+      for (unsigned int a = 0; a < n_master; ++a)
+        for (unsigned int d = 0; d < dim; ++d)
+          coordinates[dim * (a + 1) + d] = master[a][d];
+
+      const auto geometry = [&](const auto *x) {
+        if constexpr (dim == 2)
+          return segment_geometry(x, slave_old, master_old);
+        else
+          return facet_geometry(x, slave_old, master_old);
+      };
+      evaluate<dim>(result, coordinates.data(), coordinates.size(), geometry, state, law, tangent);
     }
 
     template <int dim>
@@ -440,20 +504,37 @@ namespace anvil
       AssertThrow(master.size() == n_master && master_old.size() == n_master,
                   ExcMessage("node_to_segment: the master needs " + std::to_string(n_master) +
                              " nodes (2D: a segment, 3D: a bilinear facet)"));
-      std::vector<double> coordinates;
-      for (unsigned int d = 0; d < dim; ++d)
-        coordinates.push_back(slave[d]);
-      for (const auto &p : master)
-        for (unsigned int d = 0; d < dim; ++d)
-          coordinates.push_back(p[d]);
+      ContactResult<dim> result;
+      node_to_segment(result, slave, slave_old, master.data(), master_old.data(), state, law, tangent);
+      return result;
+    }
 
-      const auto geometry = [&](const auto &x) {
-        if constexpr (dim == 2)
-          return segment_geometry(x, slave_old, master_old);
-        else
-          return facet_geometry(x, slave_old, master_old);
+    template <int dim>
+    void node_to_vertex(ContactResult<dim>   &result,
+                        const Point<dim>     &slave,
+                        const Point<dim>     &slave_old,
+                        const Point<dim>     &vertex,
+                        const Point<dim>     &vertex_old,
+                        const NodeState<dim> &state,
+                        const FrictionLaw    &law,
+                        const bool            tangent)
+    {
+      if (slave.distance(vertex) == 0)
+        {
+          result = ContactResult<dim>(); // on the vertex: no direction, no penetration
+          return;
+        }
+      std::array<double, 2 * dim> coordinates;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          coordinates[d]       = slave[d];
+          coordinates[dim + d] = vertex[d];
+        }
+      const auto geometry = [&](const auto *x) {
+        using Number = std::decay_t<decltype(*x)>;
+        return vertex_geometry<dim, Number>(x, slave_old, vertex_old);
       };
-      return evaluate<dim>(coordinates, geometry, state, law, tangent);
+      evaluate<dim>(result, coordinates.data(), coordinates.size(), geometry, state, law, tangent);
     }
 
     template <int dim>
@@ -465,17 +546,30 @@ namespace anvil
                                       const FrictionLaw    &law,
                                       const bool            tangent)
     {
-      std::vector<double> coordinates;
-      for (const auto *p : {&slave, &vertex})
-        for (unsigned int d = 0; d < dim; ++d)
-          coordinates.push_back((*p)[d]);
-      if (slave.distance(vertex) == 0)
-        return ContactResult<dim>(); // on the vertex: no direction, no penetration
-      const auto geometry = [&](const auto &x) {
-        using Number = typename std::decay_t<decltype(x)>::value_type;
-        return vertex_geometry<dim, Number>(x, slave_old, vertex_old);
+      ContactResult<dim> result;
+      node_to_vertex(result, slave, slave_old, vertex, vertex_old, state, law, tangent);
+      return result;
+    }
+
+    template <int dim>
+    void node_to_tool(ContactResult<dim>   &result,
+                      const Point<dim>     &slave,
+                      const Point<dim>     &slave_old,
+                      const RigidTool<dim> &tool,
+                      const Tensor<1, dim> &u,
+                      const Tensor<1, dim> &u_old,
+                      const NodeState<dim> &state,
+                      const FrictionLaw    &law,
+                      const bool            tangent)
+    {
+      std::array<double, dim> coordinates;
+      for (unsigned int d = 0; d < dim; ++d)
+        coordinates[d] = slave[d];
+      const auto geometry = [&](const auto *x) {
+        using Number = std::decay_t<decltype(*x)>;
+        return tool_geometry<dim, Number>(x, slave_old, tool, u, u_old);
       };
-      return evaluate<dim>(coordinates, geometry, state, law, tangent);
+      evaluate<dim>(result, coordinates.data(), dim, geometry, state, law, tangent);
     }
 
     template <int dim>
@@ -488,14 +582,10 @@ namespace anvil
                                     const FrictionLaw    &law,
                                     const bool            tangent)
     {
-      std::vector<double> coordinates(dim);
-      for (unsigned int d = 0; d < dim; ++d)
-        coordinates[d] = slave[d];
-      const auto geometry = [&](const auto &x) {
-        using Number = typename std::decay_t<decltype(x)>::value_type;
-        return tool_geometry<dim, Number>(x, slave_old, tool, t, t_old);
-      };
-      return evaluate<dim>(coordinates, geometry, state, law, tangent);
+      ContactResult<dim> result;
+      node_to_tool(result, slave, slave_old, tool, tool.displacement(t), tool.displacement(t_old), state,
+                   law, tangent);
+      return result;
     }
 
 #define INSTANTIATE(dim)                                                                           \
@@ -509,7 +599,17 @@ namespace anvil
                                              const NodeState<dim> &, const FrictionLaw &, bool);  \
   template ContactResult<dim> node_to_tool(const Point<dim> &, const Point<dim> &,                \
                                            const RigidTool<dim> &, double, double,                \
-                                           const NodeState<dim> &, const FrictionLaw &, bool);
+                                           const NodeState<dim> &, const FrictionLaw &, bool);    \
+  template void node_to_segment(ContactResult<dim> &, const Point<dim> &, const Point<dim> &,      \
+                                const Point<dim> *, const Point<dim> *, const NodeState<dim> &,   \
+                                const FrictionLaw &, bool);                                       \
+  template void node_to_vertex(ContactResult<dim> &, const Point<dim> &, const Point<dim> &,       \
+                               const Point<dim> &, const Point<dim> &, const NodeState<dim> &,    \
+                               const FrictionLaw &, bool);                                        \
+  template void node_to_tool(ContactResult<dim> &, const Point<dim> &, const Point<dim> &,         \
+                             const RigidTool<dim> &, const Tensor<1, dim> &,                      \
+                             const Tensor<1, dim> &, const NodeState<dim> &, const FrictionLaw &, \
+                             bool);
     ANVIL_INSTANTIATE(INSTANTIATE)
 #undef INSTANTIATE
   } // namespace contact

@@ -143,9 +143,12 @@ namespace anvil
   void ContactProblem<dim>::prepare_heat(const double dt)
   {
     std::vector<double> local; // packed HeatElements
-    for (const auto &[key, trial] : trials)
+    for (const auto &slot : slots)
       {
-        const auto [p, pass, n] = key;
+        if (!slot.evaluated)
+          continue;
+        const Trial       &trial = slot.trial;
+        const unsigned int p = slot.pair, pass = slot.pass, n = slot.node;
         const Pair &pair        = pairs[p];
         if (!(trial.normal_force > 0) || !(trial.area > 0))
           continue;

@@ -71,6 +71,11 @@ namespace anvil
     prm.declare_entry("Frictional heating", "true", Patterns::Bool(),
                       "false: no pair's frictional power heats the surfaces (each pair's "
                       "Thermal/Frictional heating, for all at once: the seed's tube, case 2).");
+    prm.declare_entry("Pattern look-ahead", "10", Patterns::Double(0),
+                      "Steps (of the last step's sliding) whose master faces the matrix pattern "
+                      "takes in when a slave meets a face outside it, so that it holds for "
+                      "several steps; 0: only the step's candidates (a new pattern, KLU analysis "
+                      "and pivoting at almost every step of a slide). Changes no answer.");
     for (const auto &name : pair_names)
       {
         prm.enter_subsection(name);
@@ -144,6 +149,7 @@ namespace anvil
     tools.clear();
     prm.enter_subsection("Contact");
     penetration_limit = prm.get_double("Maximum penetration");
+    look_ahead_steps  = prm.get_double("Pattern look-ahead");
     const bool frictional_heating = prm.get_bool("Frictional heating");
     for (const auto &name : scene.contact_tool_names())
       {

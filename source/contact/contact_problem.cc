@@ -184,8 +184,12 @@ namespace anvil
     if (penetration_limit == 0)
       penetration_limit = faces.empty() ? std::numeric_limits<double>::max() : 0.5 * shortest;
     committed.clear();
-    trials.clear();
+    slots.clear();
+    step_sides.clear();
     allowed.clear();
+    step_allowed.clear();
+    x_old.clear();
+    x_before.clear();
     search_cache.reset();
     grew = true;
   }
@@ -235,76 +239,6 @@ namespace anvil
   }
 
   template <int dim>
-  void ContactProblem<dim>::begin_step(const double t0, const double t1, const Vector &u_old)
-  {
-    t_old = t0;
-    t_new = t1;
-    gather_positions(u_old, x_old);
-    areas.clear();
-    trials.clear();
-    step_allowed.clear();
-    for (unsigned int p = 0; p < pairs.size(); ++p)
-      for (unsigned int pass = 0; pass < pairs[p].passes(); ++pass)
-        {
-          const Surface &slave = slave_side(p, pass);
-          std::vector<unsigned int> mine;
-          for (const auto n : slave.nodes)
-            if (node_mine[n])
-              {
-                mine.push_back(n);
-                areas[Key(p, pass, n)] = tributary_area(n, slave, x_old);
-              }
-          if (pairs[p].tool >= 0)
-            continue;
-          // Couplings that may occur in this step: a generous search.
-          std::map<unsigned int, std::vector<unsigned int>> candidates;
-          candidate_faces(master_side(p, pass), x_old, 1.5 * largest_face, mine, candidates);
-          for (const auto &[n, list] : candidates)
-            for (const auto f : list)
-              if (!pairs[p].self || !neighbourhood[p].always_excluded(n, f))
-                {
-                  step_allowed.insert({p, pass, n, f});
-                  if (allowed.insert({p, pass, n, f}).second)
-                    grew = true;
-                }
-        }
-    // Within a step the pattern only grows (a new coupling found in Newton
-    // adds to it); between steps, couplings that are no longer candidates are
-    // dropped once they are most of it, e.g. the tube's folds sliding past
-    // each other: their zero entries cost fill-in in every factorization.
-    if (allowed.size() > 2 * step_allowed.size() + 64)
-      {
-        allowed = step_allowed;
-        grew    = true;
-      }
-  }
-
-  template <int dim>
-  bool ContactProblem<dim>::couplings_changed() const
-  {
-    return Utilities::MPI::max(grew ? 1 : 0, mpi_communicator) > 0;
-  }
-
-  template <int dim>
-  std::vector<std::vector<types::global_dof_index>> ContactProblem<dim>::couplings() const
-  {
-    std::vector<std::vector<types::global_dof_index>> groups;
-    // The rows of the slave nodes this process evaluates (possibly owned by another).
-    for (unsigned int n = 0; n < node_reference.size(); ++n)
-      if (node_mine[n] && !node_owned[n])
-        groups.emplace_back(node_dofs[n].begin(), node_dofs[n].end());
-    for (const auto &[p, pass, n, f] : allowed)
-      {
-        std::vector<types::global_dof_index> dofs(node_dofs[n].begin(), node_dofs[n].end());
-        for (const auto m : faces[f].nodes)
-          dofs.insert(dofs.end(), node_dofs[m].begin(), node_dofs[m].end());
-        groups.push_back(dofs);
-      }
-    grew = false;
-    return groups;
-  }
-
-  template <int dim>
   std::pair<int, unsigned int> ContactProblem<dim>::concave_corner(
     const std::vector<std::pair<unsigned int, unsigned int>> &beyond_end) const
   {
@@ -331,22 +265,37 @@ namespace anvil
   }
 
   template <int dim>
+  void ContactProblem<dim>::face_positions(const unsigned int f, const std::vector<Point<dim>> &x,
+                                           std::array<Point<dim>, 4> &xm,
+                                           std::array<Point<dim>, 4> &xm_old) const
+  {
+    const auto &nodes = faces[f].nodes;
+    for (unsigned int a = 0; a < nodes.size(); ++a)
+      {
+        xm[a]     = x[nodes[a]];
+        xm_old[a] = x_old[nodes[a]];
+      }
+  }
+
+  template <int dim>
   int ContactProblem<dim>::closest_face(
-    const unsigned int p, const unsigned int n, const std::vector<unsigned int> &candidates,
-    const std::vector<Point<dim>> &x, const contact::NodeState<dim> &state,
-    const contact::FrictionLaw &law, contact::ContactResult<dim> &result,
+    const unsigned int p, const unsigned int n, const unsigned int *candidates,
+    const unsigned int n_candidates, const std::vector<Point<dim>> &x,
+    const contact::NodeState<dim> &state, const contact::FrictionLaw &law,
+    contact::ContactResult<dim> &result,
     std::vector<std::pair<unsigned int, unsigned int>> &beyond_end) const
   {
     const Pair &pair      = pairs[p];
     int         best_face = -1;
-    for (const auto f : candidates)
+    for (unsigned int k = 0; k < n_candidates; ++k)
       {
+        const unsigned int f = candidates[k];
         if (!may_touch(p, n, f, x))
           continue;
-        std::vector<Point<dim>> xm, xm_old;
+        std::array<Point<dim>, 4> xm, xm_old;
         face_positions(f, x, xm, xm_old);
-        auto r = contact::node_to_segment(x[n], x_old[n], xm, xm_old, state, law,
-                                          false);
+        auto &r = probe; // evaluated in place, swapped into result when closer
+        contact::node_to_segment(r, x[n], x_old[n], xm.data(), xm_old.data(), state, law, false);
         if (!r.projection_inside)
           {
             // Behind the face's line and beyond its end: a side
@@ -365,7 +314,7 @@ namespace anvil
           continue;
         if (best_face < 0 || std::abs(r.gap) < std::abs(result.gap))
           {
-            result    = std::move(r);
+            std::swap(result, r);
             best_face = f;
           }
       }
@@ -415,41 +364,75 @@ namespace anvil
     gather_positions(u, x);
     bool   missing     = false;
     double penetration = 0;
-    trials.clear();
+    // The step's candidate lists (margin 1.5 faces at t_n) hold every face
+    // this search (margin 0.5 at x) finds while no surface node has moved by
+    // 0.5 of the largest face in a coordinate: a face's box moved by at most
+    // δ, the node by δ, so the node lies within 0.5 + 2δ ≤ 1.5 of the old
+    // box. Filtered by the search's own test they are its candidates, bit for
+    // bit, without an R-tree query per node (0.4: clear of round-off).
+    bool   near_start  = x_old.size() == x.size();
+    for (unsigned int n = 0; near_start && n < x.size(); ++n)
+      for (unsigned int d = 0; d < dim; ++d)
+        near_start = near_start && std::abs(x[n][d] - x_old[n][d]) < 0.4 * largest_face;
+    auto  &dofs       = scratch_dofs;
+    auto  &beyond_end = scratch_beyond_end; // (face, its end)
     for (unsigned int p = 0; p < pairs.size(); ++p)
       {
         const Pair &pair = pairs[p];
+        // A tool's translation, once per evaluation, not per node.
+        Tensor<1, dim> tool_u, tool_u_old;
+        if (pair.tool >= 0)
+          {
+            tool_u     = tools[pair.tool]->displacement(t_new);
+            tool_u_old = tools[pair.tool]->displacement(t_old);
+          }
         for (unsigned int pass = 0; pass < pair.passes(); ++pass)
           {
-            const Surface &slave = slave_side(p, pass);
-            std::vector<unsigned int> mine;
-            for (const auto n : slave.nodes)
-              if (node_mine[n])
-                mine.push_back(n);
-            std::map<unsigned int, std::vector<unsigned int>> candidates;
-            if (pair.tool < 0)
-              candidate_faces(master_side(p, pass), x, 0.5 * largest_face, mine, candidates);
+            const StepSide &side       = step_sides[2 * p + pass];
+            CandidateLists &candidates = scratch_candidates;
+            if (pair.tool < 0 && near_start)
+              filter_candidates(side.candidates, x, 0.5 * largest_face, side.mine, candidates);
+            else if (pair.tool < 0)
+              candidate_faces(master_side(p, pass), x, 0.5 * largest_face, side.mine, candidates);
 
-            for (const auto n : mine)
+            for (unsigned int k = side.begin; k < side.end; ++k)
               {
-                const Key  key{p, pass, n};
-                const auto c     = committed.find(key);
-                const auto state = c == committed.end() ? contact::NodeState<dim>() : c->second;
+                Slot              &slot = slots[k];
+                const unsigned int n    = slot.node;
                 contact::FrictionLaw law = pair.law;
-                const double scale = (pair.per_area ? areas[key] : 1.) * pair.penalty_share();
+                const double scale = (pair.per_area ? slot.area : 1.) * pair.penalty_share();
                 law.penalty_normal *= scale;
                 law.penalty_tangent *= scale;
 
-                contact::ContactResult<dim>          result;
-                std::vector<types::global_dof_index> dofs(node_dofs[n].begin(), node_dofs[n].end());
+                Trial &trial   = slot.trial;
+                trial          = Trial();
+                slot.evaluated = true;
+                dofs.assign(node_dofs[n].begin(), node_dofs[n].end());
+                contact::ContactResult<dim> *result = &face_result;
                 if (pair.tool >= 0)
-                  result = contact::node_to_tool(x[n], x_old[n], *tools[pair.tool], t_new, t_old,
-                                                 state, law, with_matrix);
+                  {
+                    result = &tool_result;
+                    contact::node_to_tool(*result, x[n], x_old[n], *tools[pair.tool], tool_u,
+                                          tool_u_old, slot.state, law, with_matrix);
+                  }
                 else
                   {
-                    std::vector<std::pair<unsigned int, unsigned int>> beyond_end; // (face, its end)
-                    int best_face = closest_face(p, n, candidates[n], x, state, law, result, beyond_end);
+                    const unsigned int i = k - side.begin;
+                    beyond_end.clear();
+                    result->in_contact = false;
+                    result->new_state  = contact::NodeState<dim>();
+                    int best_face = closest_face(p, n, candidates.faces.data() + candidates.start[i],
+                                                 candidates.start[i + 1] - candidates.start[i], x,
+                                                 slot.state, law, *result, beyond_end);
                     bool extended = false; // best_face is an end segment extended (free_end_contact)
+                    const auto note = [&](const unsigned int f) {
+                      insert_sorted(step_allowed, {p, pass, n, f});
+                      if (insert_sorted(allowed, {p, pass, n, f}))
+                        {
+                          grew    = true;
+                          missing = true;
+                        }
+                    };
                     if (best_face < 0)
                       {
                         // Concave corners are detected in 2D only (doc/contact.md).
@@ -457,8 +440,8 @@ namespace anvil
                                                      : std::pair<int, unsigned int>(-1, 0);
                         if (corner.first < 0)
                           {
-                            const int f = free_end_face(p, pass, n, beyond_end, x, state, law,
-                                                        with_matrix, best_face, result);
+                            const int f = free_end_face(p, pass, n, beyond_end, x, slot.state, law,
+                                                        with_matrix, best_face, *result);
                             if (f >= 0)
                               {
                                 best_face = f;
@@ -468,71 +451,61 @@ namespace anvil
                         if (corner.first >= 0)
                           {
                             const unsigned int v = faces[corner.first].nodes[corner.second];
-                            result = contact::node_to_vertex(x[n], x_old[n], x[v], x_old[v], state,
-                                                             law, with_matrix);
-                            if (result.in_contact)
+                            result               = &vertex_result;
+                            contact::node_to_vertex(*result, x[n], x_old[n], x[v], x_old[v],
+                                                    slot.state, law, with_matrix);
+                            if (result->in_contact)
                               {
-                                step_allowed.insert({p, pass, n, unsigned(corner.first)});
-                                if (!allowed.count({p, pass, n, unsigned(corner.first)}))
-                                  {
-                                    allowed.insert({p, pass, n, unsigned(corner.first)});
-                                    grew    = true;
-                                    missing = true;
-                                  }
+                                note(corner.first);
                                 dofs.insert(dofs.end(), node_dofs[v].begin(), node_dofs[v].end());
-                                trials[key].face    = corner.first;
-                                trials[key].weights = {corner.second == 0 ? 1. : 0.,
-                                                       corner.second == 0 ? 0. : 1.};
+                                trial.face       = corner.first;
+                                trial.weights[0] = corner.second == 0 ? 1. : 0.;
+                                trial.weights[1] = corner.second == 0 ? 0. : 1.;
                               }
                           }
                       }
-                    else if (with_matrix && result.in_contact)
+                    else if (with_matrix && result->in_contact)
                       {
                         // The tangent for the face kept only.
-                        std::vector<Point<dim>> xm, xm_old;
+                        std::array<Point<dim>, 4> xm, xm_old;
                         face_positions(best_face, x, xm, xm_old);
-                        result = contact::node_to_segment(x[n], x_old[n], xm, xm_old, state, law, true);
+                        contact::node_to_segment(*result, x[n], x_old[n], xm.data(), xm_old.data(),
+                                                 slot.state, law, true);
                       }
-                    if (best_face >= 0 && result.in_contact)
+                    if (best_face >= 0 && result->in_contact)
                       {
-                        step_allowed.insert({p, pass, n, unsigned(best_face)});
-                        if (!allowed.count({p, pass, n, unsigned(best_face)}))
-                          {
-                            allowed.insert({p, pass, n, unsigned(best_face)});
-                            grew    = true;
-                            missing = true;
-                          }
+                        note(best_face);
                         for (const auto m : faces[best_face].nodes)
                           dofs.insert(dofs.end(), node_dofs[m].begin(), node_dofs[m].end());
-                        trials[key].face = best_face;
-                        const auto &xi   = result.xi;
+                        trial.face     = best_face;
+                        const auto &xi = result->xi;
                         if (dim == 2 && extended) // the heat goes to the end node
-                          trials[key].weights = {xi[0] < 0 ? 1. : 0., xi[0] < 0 ? 0. : 1.};
+                          trial.weights = {{xi[0] < 0 ? 1. : 0., xi[0] < 0 ? 0. : 1., 0., 0.}};
                         else if (dim == 2)
-                          trials[key].weights = {1 - xi[0], xi[0]};
+                          trial.weights = {{1 - xi[0], xi[0], 0., 0.}};
                         else
-                          trials[key].weights = {(1 - xi[0]) * (1 - xi[1]), xi[0] * (1 - xi[1]),
-                                                 (1 - xi[0]) * xi[1], xi[0] * xi[1]};
+                          trial.weights = {{(1 - xi[0]) * (1 - xi[1]), xi[0] * (1 - xi[1]),
+                                            (1 - xi[0]) * xi[1], xi[0] * xi[1]}};
                       }
                   }
-                Trial &trial = trials[key];
+                const contact::ContactResult<dim> &r = *result;
                 trial.position = x[n];
-                if (!result.in_contact)
+                if (!r.in_contact)
                   trial.face = -1;
-                trial.state  = result.new_state;
-                trial.area   = areas[key];
-                if (!result.in_contact)
+                trial.state = r.new_state;
+                trial.area  = slot.area;
+                if (!r.in_contact)
                   continue;
-                penetration        = std::max(penetration, -result.gap);
-                trial.normal_force = result.normal_force;
-                trial.gap          = result.gap;
-                trial.slip         = result.slip_increment.norm();
-                trial.work         = result.frictional_work;
-                trial.normal       = result.normal;
-                trial.tangential_force = result.tangential_force.norm();
-                trial.force_on_slave = result.normal_force * result.normal - result.tangential_force;
+                penetration            = std::max(penetration, -r.gap);
+                trial.normal_force     = r.normal_force;
+                trial.gap              = r.gap;
+                trial.slip             = r.slip_increment.norm();
+                trial.work             = r.frictional_work;
+                trial.normal           = r.normal;
+                trial.tangential_force = r.tangential_force.norm();
+                trial.force_on_slave   = r.normal_force * r.normal - r.tangential_force;
                 if (!missing)
-                  add(dofs, result.residual, with_matrix ? &result.tangent : nullptr);
+                  add(dofs, r.residual, with_matrix ? &r.tangent : nullptr);
               }
           }
       }

@@ -27,16 +27,20 @@ namespace anvil
   {
     constexpr unsigned int w = dim + 5; // force (dim), t_N, |t_T|, work, active, sliding
     std::vector<double> sums(pairs.size() * w, 0.), maxima(pairs.size(), 0.);
-    for (const auto &[key, trial] : trials)
+    for (auto &slot : slots)
       {
-        const unsigned int p = std::get<0>(key);
-        committed[key]       = trial.state;
+        if (!slot.evaluated)
+          continue;
+        const Trial       &trial = slot.trial;
+        const unsigned int p     = slot.pair;
+        committed[slot.key()]    = trial.state;
+        slot.state               = trial.state;
         double *s            = &sums[p * w];
         if (trial.normal_force > 0)
           {
             // The reverse pass of a two-pass pair acts on the Master body: its
             // reaction is what the Slave body feels.
-            const double sign = std::get<1>(key) == 0 ? 1. : -1.;
+            const double sign = slot.pass == 0 ? 1. : -1.;
             for (unsigned int d = 0; d < dim; ++d)
               s[d] += sign * trial.force_on_slave[d];
             s[dim] += trial.normal_force;
@@ -69,11 +73,14 @@ namespace anvil
   {
     std::vector<NodeOutput> out;
     const double            dt = t_new - t_old;
-    for (const auto &[key, trial] : trials)
+    for (const auto &slot : slots)
       {
-        const Pair &pair = pairs[std::get<0>(key)];
-        NodeOutput  o;
-        o.pair     = std::get<0>(key);
+        if (!slot.evaluated)
+          continue;
+        const Trial &trial = slot.trial;
+        const Pair  &pair  = pairs[slot.pair];
+        NodeOutput   o;
+        o.pair     = slot.pair;
         o.position = trial.position;
         if (trial.normal_force > 0 && trial.area > 0)
           {
@@ -84,7 +91,7 @@ namespace anvil
           }
         o.gap            = trial.gap;
         o.slip           = trial.slip;
-        const auto q     = heat_flux.find({std::get<0>(key), std::get<2>(key)});
+        const auto q     = heat_flux.find({slot.pair, slot.node});
         if (q != heat_flux.end() && trial.area > 0)
           o.heat_flux = q->second / trial.area;
         o.friction_power = dt > 0 ? trial.work / dt : 0.;
@@ -136,6 +143,7 @@ namespace anvil
     if (!in)
       throw InputError("the contact state is truncated (damaged?)");
     committed.clear();
+    slots.clear(); // begin_step() takes the states from committed
     for (std::size_t i = 0; i + 5 + dim <= all.size(); i += 5 + dim)
       {
         contact::NodeState<dim> st;

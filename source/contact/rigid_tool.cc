@@ -125,8 +125,17 @@ namespace anvil
                                Number                       &gap,
                                Tensor<1, dim, Number>       &normal) const
   {
+    project_displaced(x, displacement(t), gap, normal);
+  }
+
+  template <int dim>
+  template <typename Number>
+  void RigidTool<dim>::project_displaced(const Tensor<1, dim, Number> &x,
+                                         const Tensor<1, dim>         &u,
+                                         Number                       &gap,
+                                         Tensor<1, dim, Number>       &normal) const
+  {
     // The tool only translates: work in its own frame, y = x - u(t).
-    const Tensor<1, dim>   u = displacement(t);
     Tensor<1, dim, Number> y;
     for (unsigned int d = 0; d < dim; ++d)
       y[d] = x[d] - u[d];
@@ -139,7 +148,13 @@ namespace anvil
                                                 Tensor<1, dim, double> &) const;                  \
   template void RigidTool<dim>::project<Sacado::Fad::DFad<double>>(                               \
     const Tensor<1, dim, Sacado::Fad::DFad<double>> &, double, Sacado::Fad::DFad<double> &,       \
-    Tensor<1, dim, Sacado::Fad::DFad<double>> &) const;
+    Tensor<1, dim, Sacado::Fad::DFad<double>> &) const;                                           \
+  template void RigidTool<dim>::project_displaced<double>(                                        \
+    const Tensor<1, dim, double> &, const Tensor<1, dim> &, double &, Tensor<1, dim, double> &)   \
+    const;                                                                                        \
+  template void RigidTool<dim>::project_displaced<Sacado::Fad::DFad<double>>(                     \
+    const Tensor<1, dim, Sacado::Fad::DFad<double>> &, const Tensor<1, dim> &,                    \
+    Sacado::Fad::DFad<double> &, Tensor<1, dim, Sacado::Fad::DFad<double>> &) const;
   ANVIL_INSTANTIATE(INSTANTIATE)
 #undef INSTANTIATE
 } // namespace anvil

@@ -14,15 +14,18 @@ namespace anvil
   {
     // r is an internal force; in dynamics it takes the (1 − α_f) of the static part.
     const double factor = parameters.dynamic ? 1 - alpha_f : 1.;
+    // Kept over the elements (of one size each in a scene): no allocation per element.
+    dealii::Vector<double> rhs;
+    FullMatrix<double>     matrix;
     return contact->assemble(
       solution, with_matrix,
       [&](const std::vector<types::global_dof_index> &dofs, const dealii::Vector<double> &r,
           const FullMatrix<double> *K) {
-        dealii::Vector<double> rhs(r);
+        rhs = r;
         rhs *= -factor;
         if (with_matrix && K)
           {
-            FullMatrix<double> matrix(*K);
+            matrix = *K;
             matrix *= factor;
             active_constraints->distribute_local_to_global(matrix, rhs, dofs, system_matrix,
                                                            system_rhs);

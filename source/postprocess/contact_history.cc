@@ -55,6 +55,9 @@ namespace anvil
           summary.set("contact", name + "_heat_exchanged", c.heat_exchanged);
           summary.set("contact", name + "_friction_heat", c.friction_heat);
         }
+      // How often the mechanics built its matrix pattern anew for the contact
+      // couplings (the first included; doc/contact.md, "Pattern").
+      summary.set("contact", "pattern_rebuilds", double(contact.pattern_rebuilds()));
     }
 
   private:

@@ -170,5 +170,43 @@ namespace anvil
                                     const NodeState<dim>     &state,
                                     const FrictionLaw        &law,
                                     bool                      tangent);
+
+    /**
+     * The same three elements evaluated into @p result, whose storage is
+     * reused (the assembly keeps one per kind): once it has held a result of
+     * this size, a residual-only evaluation allocates nothing. The master's
+     * dim == 2 ? 2 : 4 nodes are given as arrays; the tool by its translations
+     * u(t), u(t_old), evaluated once per assembly (muparser, ~250
+     * instructions each). ContactResult::tangent is left as it was when
+     * @p tangent is false.
+     */
+    template <int dim>
+    void node_to_segment(ContactResult<dim>       &result,
+                         const dealii::Point<dim> &slave,
+                         const dealii::Point<dim> &slave_old,
+                         const dealii::Point<dim> *master,
+                         const dealii::Point<dim> *master_old,
+                         const NodeState<dim>     &state,
+                         const FrictionLaw        &law,
+                         bool                      tangent);
+    template <int dim>
+    void node_to_vertex(ContactResult<dim>       &result,
+                        const dealii::Point<dim> &slave,
+                        const dealii::Point<dim> &slave_old,
+                        const dealii::Point<dim> &vertex,
+                        const dealii::Point<dim> &vertex_old,
+                        const NodeState<dim>     &state,
+                        const FrictionLaw        &law,
+                        bool                      tangent);
+    template <int dim>
+    void node_to_tool(ContactResult<dim>           &result,
+                      const dealii::Point<dim>     &slave,
+                      const dealii::Point<dim>     &slave_old,
+                      const RigidTool<dim>         &tool,
+                      const dealii::Tensor<1, dim> &tool_displacement,
+                      const dealii::Tensor<1, dim> &tool_displacement_old,
+                      const NodeState<dim>         &state,
+                      const FrictionLaw            &law,
+                      bool                          tangent);
   } // namespace contact
 } // namespace anvil

@@ -151,6 +151,9 @@ namespace anvil
     std::vector<std::vector<dealii::types::global_dof_index>> couplings() const;
     /// Whether couplings() grew since the last call to it (collective).
     bool couplings_changed() const;
+    /// How often couplings() was asked for: the matrix pattern was built anew
+    /// (the first time included; summary.json's contact/pattern_rebuilds).
+    unsigned int pattern_rebuilds() const { return pattern_rebuild_count; }
 
     /// Accept the last assemble() (histories, work); collective.
     void commit();
@@ -252,7 +255,8 @@ namespace anvil
     /// @p n projects into (its element, no tangent, in @p result), or -1; the
     /// (face, end) pairs the node lies behind and beyond in @p beyond_end (3D:
     /// the facets it lies behind and outside of, end 0).
-    int closest_face(unsigned int p, unsigned int n, const std::vector<unsigned int> &candidates,
+    int closest_face(unsigned int p, unsigned int n, const unsigned int *candidates,
+                     unsigned int n_candidates,
                      const std::vector<dealii::Point<dim>> &x, const contact::NodeState<dim> &state,
                      const contact::FrictionLaw &law, contact::ContactResult<dim> &result,
                      std::vector<std::pair<unsigned int, unsigned int>> &beyond_end) const;
@@ -276,6 +280,15 @@ namespace anvil
     void face_positions(unsigned int f, const std::vector<dealii::Point<dim>> &x,
                         std::vector<dealii::Point<dim>> &xm,
                         std::vector<dealii::Point<dim>> &xm_old) const;
+    void face_positions(unsigned int f, const std::vector<dealii::Point<dim>> &x,
+                        std::array<dealii::Point<dim>, 4> &xm,
+                        std::array<dealii::Point<dim>, 4> &xm_old) const;
+    /// Candidate master faces of each slave node: those of faces[start[k]],
+    /// ..., faces[start[k + 1] − 1] for the k-th node of a list (sorted).
+    struct CandidateLists
+    {
+      std::vector<unsigned int> start, faces;
+    };
     /// Node states keyed by (pair, pass, node).
     using Key = std::tuple<unsigned int, unsigned int, unsigned int>;
     struct Trial
@@ -286,7 +299,26 @@ namespace anvil
       int                     face = -1;      // master face (deformable master)
       dealii::Point<dim>      position;       // current slave position
       dealii::Tensor<1, dim>  normal;         // master normal at the projection
-      std::vector<double>     weights;        // master shape functions at the projection
+      std::array<double, 4>   weights = {{0, 0, 0, 0}}; // master shape functions at the projection
+    };
+    /// One slave node of one pass that this process evaluates, for the step:
+    /// its tributary area and committed state at t_n, and its last trial.
+    struct Slot
+    {
+      unsigned int            pair = 0, pass = 0, node = 0;
+      double                  area = 0;
+      contact::NodeState<dim> state;             // committed
+      bool                    evaluated = false; // trial from the last assemble()
+      Trial                   trial;
+      Key key() const { return Key(pair, pass, node); }
+    };
+    /// A pass's slave nodes this process evaluates: slots[begin, end), their
+    /// nodes, and their candidate faces at t_n with the margin of the step.
+    struct StepSide
+    {
+      unsigned int              begin = 0, end = 0;
+      std::vector<unsigned int> mine;
+      CandidateLists            candidates;
     };
     /// One slave node's heat exchange over a step (gathered on every process).
     struct HeatElement
@@ -311,10 +343,19 @@ namespace anvil
     void share_out_nodes();
     double tributary_area(unsigned int node, const Surface &surface,
                           const std::vector<dealii::Point<dim>> &x) const;
-    /// Candidate master faces of @p node, from an R-tree search, enlarged by @p margin.
+    /// Candidate master faces of each of @p slaves: the faces whose bounding
+    /// box at @p x, enlarged by @p margin, holds the node (R-tree search).
     void   candidate_faces(const Surface &master, const std::vector<dealii::Point<dim>> &x,
                            double margin, const std::vector<unsigned int> &slaves,
-                           std::map<unsigned int, std::vector<unsigned int>> &candidates) const;
+                           CandidateLists &candidates) const;
+    /// Whether the box of face @p f at @p x, enlarged by @p margin, holds @p point.
+    bool face_box_holds(unsigned int f, const std::vector<dealii::Point<dim>> &x, double margin,
+                        const dealii::Point<dim> &point) const;
+    /// The same from @p superset, a list that holds every such face
+    /// (the step's lists while the surface moved little; see assemble()).
+    void   filter_candidates(const CandidateLists &superset, const std::vector<dealii::Point<dim>> &x,
+                             double margin, const std::vector<unsigned int> &slaves,
+                             CandidateLists &candidates) const;
     /// The R-tree of each master side and margin, kept while its nodes move less
     /// than its slack (contact_problem.cc); reset by setup().
     struct SearchCache;
@@ -344,20 +385,39 @@ namespace anvil
     // The step.
     double                          t_old = 0, t_new = 0;
     std::vector<dealii::Point<dim>> x_old;
-    std::map<Key, double>           areas; // tributary areas at t_n
+    // The start of the step before (the couplings' look-ahead, begin_step()).
+    double                          t_before = 0;
+    std::vector<dealii::Point<dim>> x_before;
+    std::vector<StepSide>           step_sides; // per pair and pass: 2 p + pass
+    std::vector<Slot>               slots;      // ordered by (pair, pass, node)
 
-    // Histories and trials.
-    std::map<Key, contact::NodeState<dim>> committed, trial_states;
-    std::map<Key, Trial>                   trials;
+    // Scratch of assemble(): kept so that an evaluation allocates nothing.
+    CandidateLists                                   scratch_candidates;
+    mutable contact::ContactResult<dim>              probe; // closest_face()'s trials
+    contact::ContactResult<dim>                      face_result, vertex_result, tool_result;
+    std::vector<std::pair<unsigned int, unsigned int>> scratch_beyond_end;
+    std::vector<dealii::types::global_dof_index>     scratch_dofs;
+
+    // Histories.
+    std::map<Key, contact::NodeState<dim>> committed;
     double                                 trial_max_penetration = 0;
     std::vector<PairTotals>                pair_totals;
 
-    // Sparsity bookkeeping: allowed (pair, pass, slave node, face) couplings,
-    // ever (the matrix pattern only grows), and those of the current step (the
-    // links of the monolithic scheme's colouring: heat_links()).
-    mutable std::set<std::tuple<unsigned int, unsigned int, unsigned int, unsigned int>> allowed,
-      step_allowed;
-    mutable bool grew = false;
+    // Sparsity bookkeeping (coupling_margin.cc): the (pair, pass, slave node,
+    // face) couplings in the matrix pattern, and those of the current step
+    // (the links of the monolithic scheme's colouring: heat_links()); sorted.
+    using Coupling = std::array<unsigned int, 4>;
+    mutable std::vector<Coupling> allowed, step_allowed;
+    mutable bool                  grew                  = false;
+    mutable unsigned int          pattern_rebuild_count = 0;
+    /// Steps of the surface's last motion the pattern looks ahead (Contact/Pattern look-ahead).
+    double look_ahead_steps = 10;
+    /// The pattern's couplings when it must grow: the step's, and those its
+    /// slave nodes meet over the next look_ahead_steps if they move relative
+    /// to the master as in the last step (coupling_margin.cc).
+    std::vector<Coupling> look_ahead_couplings() const;
+    /// Adds @p c to the sorted @p set; whether it was not there.
+    static bool insert_sorted(std::vector<Coupling> &set, const Coupling &c);
 
     // Heat.
     std::vector<dealii::types::global_dof_index> node_thermal_dof;

@@ -92,6 +92,12 @@ namespace anvil
                  double                                t,
                  Number                               &gap,
                  dealii::Tensor<1, dim, Number>       &normal) const;
+    /// The same with the translation @p u = displacement(t) already evaluated.
+    template <typename Number>
+    void project_displaced(const dealii::Tensor<1, dim, Number> &x,
+                           const dealii::Tensor<1, dim>         &u,
+                           Number                               &gap,
+                           dealii::Tensor<1, dim, Number>       &normal) const;
 
     /// The surface type as in the parameter file ("plane", "circle", ...).
     const std::string &type() const { return type_name; }
