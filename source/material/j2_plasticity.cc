@@ -1,3 +1,8 @@
+// The J2 point (seed §1.3, §2.3): trial state, return map, consistent and
+// adiabatic tangents, heat sources. Long because the point is one class with
+// internal linkage (its helpers in j2_tangent.h are inlined only so, see
+// there): evaluate() and finish() share its Trial and state; splitting the
+// return map into another file would need the class in a header.
 #include <anvil/core/scene.h>
 #include <anvil/material/j2_plasticity.h>
 
