@@ -144,17 +144,25 @@ namespace
     const MappingQ<2>   reference(1);
     FEValues<2>         fe_values(reference, dofs.get_fe(), q3, update_values);
     std::vector<double> T_new, T_old, T_fe(q3.size());
-    bool                same = true;
-    for (const auto &cell : dofs.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          problem->temperature_at_quadrature_points(cell, q3, T_new, T_old);
-          fe_values.reinit(cell);
-          fe_values.get_function_values(problem->temperature(), T_fe);
-          same = same && T_new == T_fe;
-        }
-    same = Utilities::MPI::min(same ? 1 : 0, MPI_COMM_WORLD) == 1;
-    check(same, "temperatures at quadrature points = FEValues::get_function_values, bit for bit");
+    // Both paths: by the table's dof positions (the fields have its layout)
+    // and by global look-ups.
+    const bool by_table = problem->point_values_by_table();
+    check(by_table, "the temperature fields have the reference table's layout");
+    for (const bool table_path : {true, false})
+      {
+        bool same = true;
+        for (const auto &cell : dofs.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              problem->temperature_at_quadrature_points(cell, q3, T_new, T_old, table_path);
+              fe_values.reinit(cell);
+              fe_values.get_function_values(problem->temperature(), T_fe);
+              same = same && T_new == T_fe;
+            }
+        same = Utilities::MPI::min(same ? 1 : 0, MPI_COMM_WORLD) == 1;
+        check(same, std::string("temperatures at quadrature points = FEValues::get_function_values, bit "
+                                "for bit (") + (table_path ? "table" : "look-ups") + ")");
+      }
     problem.reset(); // before mech goes
   }
 } // namespace

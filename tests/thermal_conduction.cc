@@ -347,10 +347,11 @@ namespace
     const double H1 = m.problem->heat_content();
     std::vector<double> T_new, T_old;
     double              T_max_error = 0;
+    const bool          by_table    = m.problem->point_values_by_table();
     for (const auto &cell : m.tria.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          m.problem->temperature_at_quadrature_points(cell, QGauss<2>(2), T_new, T_old);
+          m.problem->temperature_at_quadrature_points(cell, QGauss<2>(2), T_new, T_old, by_table);
           for (const double T : T_new)
             T_max_error = std::max(T_max_error, std::abs(T - 295));
         }

@@ -230,10 +230,12 @@ namespace anvil
   {
     const unsigned int  n_q = mechanical->get_quadrature().size();
     std::vector<double> T_new(n_q), T_old(n_q);
+    const bool          by_table = thermal->point_values_by_table();
     for (const auto &cell : triangulation->active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          thermal->temperature_at_quadrature_points(cell, mechanical->get_quadrature(), T_new, T_old);
+          thermal->temperature_at_quadrature_points(cell, mechanical->get_quadrature(), T_new, T_old,
+                                                    by_table);
           auto values = point_temperature[cell];
           std::copy(T_new.begin(), T_new.end(), values.begin());
         }

@@ -101,14 +101,49 @@ namespace anvil
     std::vector<std::string>                   nodal_names;
     std::vector<TrilinosWrappers::MPI::Vector> nodal_values;
 
+    // The nodal numbering, the index sets and each vertex's patch volume
+    // depend on the mesh only (the volumes are the reference cells'), so they
+    // are made at the first write and kept while the mesh is the same.
+    const Triangulation<dim>     *nodal_mesh = nullptr;
+    unsigned int                  nodal_cells = 0;
+    IndexSet                      nodal_owned, nodal_relevant;
+    TrilinosWrappers::MPI::Vector patch_volume; // Σ of the cell volumes around each vertex (owned)
+    std::vector<double>           cell_volume;  // by active cell index, owned cells
+
+    void prepare_nodal_dofs(const SimulationState<dim> &s)
+    {
+      if (nodal_mesh == &s.triangulation && nodal_cells == s.triangulation.n_active_cells())
+        return;
+      nodal_values.clear(); // their layout was the old mesh's
+      nodal_dofs.reinit(s.triangulation);
+      nodal_dofs.distribute_dofs(nodal_fe);
+      nodal_owned = nodal_dofs.locally_owned_dofs();
+      DoFTools::extract_locally_relevant_dofs(nodal_dofs, nodal_relevant);
+      TrilinosWrappers::MPI::Vector sum;
+      sum.reinit(nodal_owned, nodal_relevant, s.communicator, true);
+      cell_volume.assign(s.triangulation.n_active_cells(), 0.);
+      std::vector<types::global_dof_index> dofs(nodal_fe.n_dofs_per_cell());
+      for (const auto &cell : nodal_dofs.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(dofs);
+            const double volume = cell_volume[cell->active_cell_index()] = cell->measure();
+            for (const auto d : dofs)
+              sum(d) += volume;
+          }
+      sum.compress(VectorOperation::add);
+      patch_volume.reinit(nodal_owned, s.communicator);
+      for (const auto d : nodal_owned)
+        patch_volume(d) = sum(d);
+      patch_volume.compress(VectorOperation::insert);
+      nodal_mesh  = &s.triangulation;
+      nodal_cells = s.triangulation.n_active_cells();
+    }
+
     void recover(const SimulationState<dim>                        &s,
                  const typename MechanicalProblem<dim>::CellFields &fields)
     {
-      nodal_dofs.reinit(s.triangulation);
-      nodal_dofs.distribute_dofs(nodal_fe);
-      const IndexSet owned = nodal_dofs.locally_owned_dofs();
-      IndexSet       relevant;
-      DoFTools::extract_locally_relevant_dofs(nodal_dofs, relevant);
+      prepare_nodal_dofs(s);
       std::vector<unsigned int> which;
       nodal_names.clear();
       for (unsigned int i = 0; i < fields.names.size(); ++i)
@@ -118,31 +153,30 @@ namespace anvil
             nodal_names.push_back(fields.names[i] + "_nodal");
           }
       // Writable with ghost entries: sums of cell contributions, then compress(add).
-      std::vector<TrilinosWrappers::MPI::Vector> sums(which.size() + 1);
+      std::vector<TrilinosWrappers::MPI::Vector> sums(which.size());
       for (auto &v : sums)
-        v.reinit(owned, relevant, s.communicator, true);
+        v.reinit(nodal_owned, nodal_relevant, s.communicator, true);
       std::vector<types::global_dof_index> dofs(nodal_fe.n_dofs_per_cell());
       for (const auto &cell : nodal_dofs.active_cell_iterators())
         if (cell->is_locally_owned())
           {
             cell->get_dof_indices(dofs);
-            const double volume = cell->measure();
+            const double volume = cell_volume[cell->active_cell_index()];
             for (const auto d : dofs)
-              {
-                sums.back()(d) += volume;
-                for (unsigned int k = 0; k < which.size(); ++k)
-                  sums[k](d) += volume * fields.values[which[k]][cell->active_cell_index()];
-              }
+              for (unsigned int k = 0; k < which.size(); ++k)
+                sums[k](d) += volume * fields.values[which[k]][cell->active_cell_index()];
           }
       for (auto &v : sums)
         v.compress(VectorOperation::add);
-      nodal_values.assign(which.size(), TrilinosWrappers::MPI::Vector(owned, relevant, s.communicator));
+      nodal_values.resize(which.size());
       for (unsigned int k = 0; k < which.size(); ++k)
         {
-          TrilinosWrappers::MPI::Vector mean(owned, s.communicator);
-          for (const auto d : owned)
-            mean(d) = sums[k](d) / sums.back()(d);
+          TrilinosWrappers::MPI::Vector mean(nodal_owned, s.communicator);
+          for (const auto d : nodal_owned)
+            mean(d) = sums[k](d) / patch_volume(d);
           mean.compress(VectorOperation::insert);
+          if (nodal_values[k].size() == 0)
+            nodal_values[k].reinit(nodal_owned, nodal_relevant, s.communicator);
           nodal_values[k] = mean;
         }
     }

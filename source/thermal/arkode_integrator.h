@@ -52,7 +52,10 @@ namespace anvil
       double       relative_tolerance       = 1e-6;
       double       absolute_tolerance       = 1e-6;
       double       fixed_step_size          = 0; // 0: adaptive
-      double       initial_step_size        = 0; // 0: ARKode's estimate
+      /// 0: ARKode's estimate; else the step the last call found possible
+      /// (IntegratorStatistics::next_step): the call starts with the span cut
+      /// into equal steps near it (see integrate).
+      double       initial_step_size        = 0;
       unsigned int max_internal_steps       = 5000;
       unsigned int max_nonlinear_iterations = 10;
     };
@@ -68,6 +71,10 @@ namespace anvil
       /// The largest accepted internal step: where the next call should start
       /// (last_step is usually cut short by the end time, by any amount).
       double largest_step = 0;
+      /// Where the next call should start: ARKode's proposal after the last
+      /// step (its error controller's), or the largest step if that is larger
+      /// (a last step cut to a sliver by the end time proposes too little).
+      double next_step = 0;
     };
 
     /**

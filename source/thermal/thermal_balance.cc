@@ -253,9 +253,17 @@ namespace anvil
   }
 
   template <int dim>
+  bool ThermalProblem<dim>::point_values_by_table() const
+  {
+    const auto &table = reference_cells();
+    return table.reads(temperature_ghosted.trilinos_vector().Map()) &&
+           table.reads(old_temperature_ghosted.trilinos_vector().Map());
+  }
+
+  template <int dim>
   void ThermalProblem<dim>::temperature_at_quadrature_points(
     const typename Triangulation<dim>::active_cell_iterator &cell, const Quadrature<dim> &q,
-    std::vector<double> &T_new, std::vector<double> &T_old) const
+    std::vector<double> &T_new, std::vector<double> &T_old, const bool by_table) const
   {
     const typename DoFHandler<dim>::active_cell_iterator dof_cell(&triangulation, cell->level(),
                                                                   cell->index(), &dof_handler);
@@ -272,8 +280,7 @@ namespace anvil
     // The dof values by their positions in the local arrays (the reference
     // table's), not by a global look-up each.
     const auto &table = reference_cells();
-    const bool  fast  = dof_cell->is_locally_owned() && table.reads(temperature_ghosted.trilinos_vector().Map()) &&
-                      table.reads(old_temperature_ghosted.trilinos_vector().Map());
+    const bool  fast  = by_table && dof_cell->is_locally_owned();
     std::vector<types::global_dof_index> dofs(n_dofs);
     if (!fast)
       dof_cell->get_dof_indices(dofs);

@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace anvil
 {
@@ -251,33 +252,64 @@ namespace anvil
     // The groups are known on every process: each adds its own rows, the
     // columns wherever they live (another process's: ghost columns). A group
     // is a slave and the nodes of the master face it touches (eq. 30); the
-    // slave is the one that shares no cell with the others. Beside the group,
-    // the slave and the masters' cell neighbours couple too: the faces next
-    // to this one, which a slave sliding on reaches next, are then in the
-    // pattern already (where a neighbour's row is not known here, only the
-    // group: a rebuild later, not a wrong pattern).
+    // slave is the one that shares no cell with the others. The group couples
+    // all-to-all; beside it, the slave couples with the nodes within `rings`
+    // cell layers of the master face (both ways): the faces a slave sliding on
+    // reaches in the next steps are then in the pattern already, so a new
+    // pattern (and a new KLU analysis) is needed every few faces, not at
+    // every face (two_blocks: 17 rebuilds in 79 steps with one layer of the
+    // masters' cells all-to-all). Only the slave's row and column grow (not
+    // the layers among themselves: no fill-in between interior nodes); in 3D
+    // the layers grow as their square, so one. Where a row is not known here
+    // the group alone: a rebuild later, not a wrong pattern.
+    const unsigned int rings = dim == 2 ? 3 : 1;
     DynamicSparsityPattern dsp;
     copy_pattern(cell_pattern, dsp, locally_relevant_dofs);
     auto known = [&](const types::global_dof_index i) { return locally_relevant_dofs.is_element(i); };
-    std::vector<types::global_dof_index> block;
+    auto owned = [&](const types::global_dof_index i) { return locally_owned_dofs.is_element(i); };
+    // Per slave the master nodes of all its groups: the layers around their
+    // union are the union of the layers around each (one expansion per slave,
+    // not per group: the groups only grow, two_blocks ends with 211 of 11 slaves).
+    std::map<types::global_dof_index, std::vector<types::global_dof_index>> masters_of;
+    std::vector<types::global_dof_index> block, next;
     for (const auto &group : groups)
       {
         block.assign(group.begin(), group.end());
+        std::sort(block.begin(), block.end());
+        for (const auto i : block)
+          if (owned(i))
+            dsp.add_entries(i, block.begin(), block.end(), true);
         for (const auto j : group)
           {
             bool slave = known(j);
             for (const auto k : group)
               slave = slave && (k == j || !cell_pattern.exists(j, k));
-            if (slave || !known(j))
-              continue;
-            for (auto e = cell_pattern.begin(j); e != cell_pattern.end(j); ++e)
-              block.push_back(e->column());
+            if (slave)
+              for (const auto k : group)
+                if (k != j)
+                  masters_of[j].push_back(k);
           }
-        std::sort(block.begin(), block.end());
-        block.erase(std::unique(block.begin(), block.end()), block.end());
-        for (const auto i : block)
-          if (locally_owned_dofs.is_element(i))
-            dsp.add_entries(i, block.begin(), block.end(), true);
+      }
+    for (auto &[j, region] : masters_of)
+      {
+        std::sort(region.begin(), region.end());
+        region.erase(std::unique(region.begin(), region.end()), region.end());
+        for (unsigned int r = 0; r < rings; ++r)
+          {
+            next = region;
+            for (const auto k : region)
+              if (known(k))
+                for (auto e = cell_pattern.begin(k); e != cell_pattern.end(k); ++e)
+                  next.push_back(e->column());
+            std::sort(next.begin(), next.end());
+            next.erase(std::unique(next.begin(), next.end()), next.end());
+            region.swap(next);
+          }
+        if (owned(j))
+          dsp.add_entries(j, region.begin(), region.end(), true);
+        for (const auto k : region)
+          if (owned(k))
+            dsp.add(k, j);
       }
     return dsp;
   }
@@ -388,12 +420,14 @@ namespace anvil
         temperature_ghosted = old_temperature_ghosted;
         return stats;
       }
-    // The next step starts from the largest step ARKode took here, not from
-    // the last one: the end time cuts that one short by an amount that jumps
-    // (from ~0 to a full step) with the last digits of the solution, and a
-    // tiny initial step makes the next solve take several more steps. So one
-    // round-off difference (e.g. 1 vs 2 processes) changed every later step.
-    last_internal_step = s.largest_step > 0 ? s.largest_step : s.last_step;
+    // The next step starts from ARKode's proposal after this one (or the
+    // largest step taken, if larger), not from the last step: the end time
+    // cuts that one short by an amount that jumps (from ~0 to a full step)
+    // with the last digits of the solution, and a tiny initial step made the
+    // next solve take several more steps (one round-off difference, e.g. 1 vs
+    // 2 processes, changed every later step). The adapter cuts the next span
+    // into equal steps near it (arkode_integrator.cc, first_step).
+    last_internal_step = s.next_step > 0 ? s.next_step : s.last_step;
     apply_dirichlet(time_new, y);
     hanging.distribute(y);
     solution            = y;

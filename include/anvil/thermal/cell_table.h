@@ -44,35 +44,23 @@ namespace anvil
       void clear() { *this = CellTable(); }
       /// Whether @p vector_map is the layout of local_dofs (same data, or the
       /// same owned and ghost elements in the same order). Local on purpose:
-      /// Epetra's SameAs/PointSameAs reduce over all processes, and this is
-      /// asked per owned cell, whose number differs between processes. A map
-      /// found equal element by element is kept (its copy holds the data
-      /// alive, so the data's address identifies it) so that the O(n)
-      /// comparison runs once per vector layout, not once per cell.
-      /// Not thread-safe: asked from the serial balance loops only.
+      /// Epetra's SameAs/PointSameAs reduce over all processes. O(n) where the
+      /// maps do not share their data: ask once per loop over the cells, not
+      /// per cell.
       bool reads(const Epetra_BlockMap &vector_map) const
       {
         if (!map)
           return false;
         if (vector_map.DataPtr() == map->DataPtr())
           return true;
-        for (const auto &m : same_layout)
-          if (vector_map.DataPtr() == m.DataPtr())
-            return true;
         const int n = map->NumMyElements();
         if (vector_map.NumMyElements() != n)
           return false;
         for (int i = 0; i < n; ++i)
           if (vector_map.GID64(i) != map->GID64(i))
             return false;
-        if (same_layout.size() >= 4)
-          same_layout.erase(same_layout.begin());
-        same_layout.push_back(vector_map);
         return true;
       }
-
-    private:
-      mutable std::vector<Epetra_BlockMap> same_layout;
     };
   } // namespace thermal
 } // namespace anvil

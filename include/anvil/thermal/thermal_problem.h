@@ -353,15 +353,21 @@ namespace anvil
     }
     double source_heat() const { return total_source; }
 
+    /// Whether temperature_at_quadrature_points may read the current and the
+    /// committed field by the dof positions of the reference cell table (both
+    /// have its layout). O(dofs): ask once per loop over the cells.
+    bool point_values_by_table() const;
     /// T at the points of @p quadrature in @p cell (a cell of the shared
-    /// triangulation): the current and the committed values. Not reentrant
-    /// (it caches an FEValues): call it from one thread, as the coupling does
-    /// when it fills the per-point temperatures the mechanics reads.
+    /// triangulation): the current and the committed values; @p by_table is
+    /// point_values_by_table() of this loop. Not reentrant (it caches an
+    /// FEValues): call it from one thread, as the coupling does when it fills
+    /// the per-point temperatures the mechanics reads.
     void temperature_at_quadrature_points(
       const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
       const dealii::Quadrature<dim>                                   &quadrature,
       std::vector<double>                                             &T_new,
-      std::vector<double>                                             &T_old) const;
+      std::vector<double>                                             &T_old,
+      bool                                                             by_table) const;
 
   private:
     struct Ode;
