@@ -156,7 +156,11 @@ namespace anvil
     // The band if its envelope's flops, weighted by what a flop costs in
     // each, are fewer, and its storage is within a few times KLU's factors
     // (or small anyway: 8 MB).
-    band_chosen = band->estimated_flops() * band_cost_per_flop < klu_estimated_flops * klu_cost_per_flop &&
+    // Instructions per flop (callgrind, two_blocks and the tube): KLU 7–10
+    // (refactor, factor), the band's elimination ~1.
+    constexpr double klu_instructions_per_flop = 7, band_instructions_per_flop = 1;
+    band_chosen = band->estimated_flops() * band_instructions_per_flop <
+                    klu_estimated_flops * klu_instructions_per_flop &&
                   (band_entries <= 4 * direct->estimated_entries || band_entries <= (1 << 20));
     return band_chosen;
   }

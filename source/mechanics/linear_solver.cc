@@ -229,13 +229,21 @@ namespace anvil
         const auto *kept_band = direct_solver.band_solver();
         const auto  orderings = kept_band ? kept_band->orderings : 0;
         direct_solver.factorize(system_matrix);
-        const auto *band = direct_solver.band_solver();
-        if (band && band->orderings != orderings && std::getenv("ANVIL_BAND_LOG"))
-          std::cout << "Mechanics: " << direct_solver.last_method() << " (band: " << band->size()
-                    << " unknowns, bandwidths " << band->lower_bandwidth() << " + "
-                    << band->upper_bandwidth() << ", envelope " << band->estimated_flops()
-                    << " flops, ordering " << band->orderings << "; KLU's estimate "
-                    << direct_solver.klu_estimated_flops << ")" << std::endl;
+        // The choice once in the log (and at every new ordering on request).
+        const auto *band  = direct_solver.band_solver();
+        const bool  first = direct_solver.numeric_factorizations + direct_solver.band_factorizations == 1;
+        if ((first || (band && band->orderings != orderings && std::getenv("ANVIL_BAND_LOG"))) &&
+            Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+          {
+            std::cout << "Mechanics: direct solver " << direct_solver.last_method();
+            if (band)
+              std::cout << " (band LU: " << band->size() << " unknowns, bandwidths "
+                        << band->lower_bandwidth() << " + " << band->upper_bandwidth() << ", "
+                        << band->estimated_flops() << " flops on the envelope, ordering "
+                        << band->orderings << "; KLU's estimate " << direct_solver.klu_estimated_flops
+                        << " flops)";
+            std::cout << std::endl;
+          }
         direct_solver.solve(du, system_rhs);
         return 1;
       }
