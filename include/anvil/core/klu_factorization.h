@@ -91,9 +91,6 @@ namespace anvil
     /// failed the backward-error check.
     unsigned long pivoting_retries = 0;
     unsigned long band_factorizations = 0;
-    /// Instructions per flop measured (callgrind, two_blocks and the tube):
-    /// KLU's sparse kernels against the band's vectorised axpy.
-    static constexpr double klu_cost_per_flop = 4, band_cost_per_flop = 1;
 
   private:
     struct Direct; // KLU called directly (one process)
