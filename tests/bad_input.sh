@@ -33,6 +33,7 @@ expect "bad --set entry"    "--set 'Time/End tme=2'"                       "$anv
 expect "bad --set value"    "--set 'Time/End time=soon'"                   "$anvil" "$src/prm/cantilever.prm" --set "Time/End time=soon"
 expect "malformed --set"    "expected 'Section/Subsection/Entry=value'"     "$anvil" "$src/prm/cantilever.prm" --set "Time/End time"
 expect "bad direct solver limit" "Direct solver limit.*expected a number of DoFs >= 0 or .measured." "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/Direct solver limit=lots"
+expect "bad direct solver" "--set 'Mechanics/Linear solver/Direct solver=lu'.*auto\|klu\|band" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/Direct solver=lu"
 expect "unknown option"     "unknown option '--frobnicate'"               "$anvil" "$src/prm/cantilever.prm" --frobnicate
 expect "bad probe"          "--set: 'Output/Probes'"                       "$anvil" "$src/prm/cantilever.prm" --set "Output/Probes=tip: 10"
 expect "unknown QoI probe"  "'Output/Quantities of interest'.*no probe named 'tap'" "$anvil" "$src/prm/cantilever.prm" --set "Output/Quantities of interest=a: probe(tap, ux)"

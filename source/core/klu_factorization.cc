@@ -12,9 +12,12 @@
 
 #include <trilinos_klu_decl.h>
 
+#include <anvil/core/band_factorization.h>
 #include <anvil/core/klu_factorization.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <iostream>
 #include <cmath>
 #include <vector>
 
@@ -68,6 +71,9 @@ namespace anvil
     /// pattern is the analysed one (its arrays are given to KLU as they are).
     std::vector<int>    position;
     std::vector<double> values; // the matrix on the analysed pattern
+    /// L's and U's entries estimated by the analysis made for the choice
+    /// of the band (choose_band), −1 before.
+    double estimated_entries = -1;
   };
 
   namespace
@@ -100,8 +106,69 @@ namespace anvil
   {}
   KluFactorization::~KluFactorization() = default;
 
+  KluFactorization::Method KluFactorization::parse_method(const std::string &name)
+  {
+    if (name == "klu")
+      return Method::klu;
+    if (name == "band")
+      return Method::band;
+    AssertThrow(name == "auto", ExcMessage("Direct solver: '" + name + "' is none of auto, klu, band"));
+    return Method::automatic;
+  }
+
+  bool KluFactorization::choose_band(const Epetra_CrsMatrix &A, const int n, const int *offsets,
+                                     const int *columns)
+  {
+    if (method == Method::klu)
+      return false;
+    if (&A == band_matrix && A.NumMyNonzeros() == band_nonzeros)
+      return band_chosen;
+    // Local column indices are rows only if the column map is the row map.
+    if (!A.ColMap().SameAs(A.RowMap()) || !A.DomainMap().SameAs(A.RowMap()) ||
+        !A.RangeMap().SameAs(A.RowMap()))
+      return band_chosen = false;
+    if (!band)
+      band = std::make_unique<BandFactorization>();
+    if (!direct)
+      direct = std::make_unique<Direct>();
+    const bool reordered = band->analyze(n, offsets, columns);
+    band_matrix          = &A;
+    band_nonzeros        = A.NumMyNonzeros();
+    if (method == Method::band)
+      return band_chosen = true;
+    if (!reordered)
+      return band_chosen;
+    const double band_entries = double(n) * (2 * band->lower_bandwidth() + band->upper_bandwidth() + 1);
+    if (klu_estimated_flops < 0)
+      {
+        // KLU's estimate from an analysis alone (AMD's flop count), made
+        // once: later patterns differ by a few contact couplings.
+        trilinos_klu_common common;
+        trilinos_klu_defaults(&common);
+        trilinos_klu_symbolic *symbolic =
+          trilinos_klu_analyze(n, const_cast<int *>(offsets), const_cast<int *>(columns), &common);
+        if (!symbolic)
+          return band_chosen = false;
+        klu_estimated_flops   = symbolic->est_flops;
+        direct->estimated_entries = symbolic->lnz + symbolic->unz;
+        trilinos_klu_free_symbolic(&symbolic, &common);
+      }
+    // The band if its envelope's flops, weighted by what a flop costs in
+    // each, are fewer, and its storage is within a few times KLU's factors
+    // (or small anyway: 8 MB).
+    // Instructions per flop (callgrind, two_blocks and the tube): KLU 7–10
+    // (refactor, factor), the band's elimination ~1.
+    constexpr double klu_instructions_per_flop = 7, band_instructions_per_flop = 1;
+    band_chosen = band->estimated_flops() * band_instructions_per_flop <
+                    klu_estimated_flops * klu_instructions_per_flop &&
+                  (band_entries <= 4 * direct->estimated_entries || band_entries <= (1 << 20));
+    return band_chosen;
+  }
+
   void KluFactorization::clear()
   {
+    band_matrix   = nullptr;
+    band_active   = false;
     solver.reset();
     problem.reset();
     matrix        = nullptr;
@@ -116,6 +183,15 @@ namespace anvil
     if (A.Comm().NumProc() != 1 || A.ExtractCrsDataPointers(offsets, columns, entries) != 0)
       return false;
     const int n = A.NumMyRows();
+    if (choose_band(A, n, offsets, columns))
+      {
+        band->factorize(offsets, columns, entries);
+        band_active   = true;
+        pivots_reused = false;
+        ++band_factorizations;
+        return true;
+      }
+    band_active = false;
     if (&A != matrix || A.NumMyNonzeros() != nonzeros)
       {
         // Local columns are rows only if the column map is the row map; the
@@ -250,9 +326,11 @@ namespace anvil
 
   void KluFactorization::solve(TrilinosWrappers::MPI::Vector &x, const TrilinosWrappers::MPI::Vector &b)
   {
-    Assert(solver || direct, ExcMessage("KluFactorization::solve before factorize"));
+    Assert(solver || direct || band_active, ExcMessage("KluFactorization::solve before factorize"));
     int ierr = 0;
-    if (direct)
+    if (band_active)
+      band->solve(x.trilinos_vector()[0], b.trilinos_vector()[0]);
+    else if (direct)
       solve_direct(x.trilinos_vector()[0], b.trilinos_vector()[0]);
     else
       {

@@ -109,6 +109,11 @@ namespace anvil
                       "F-bar benchmark, " + std::to_string(measured_direct_solver_limit(2)) +
                         " in 2D, " + std::to_string(measured_direct_solver_limit(3)) +
                         " in 3D (contrib/bench/solver_scaling.py, doc/linear_solver.md).");
+    prm.declare_entry("Direct solver", "auto", Patterns::Selection("auto|klu|band"),
+                      "The direct solver's factorisation on one process (several processes: KLU). "
+                      "klu: sparse LU (KLU); band: LU with partial pivoting in the band of a "
+                      "reverse Cuthill-McKee numbering; auto: the band where its estimated work "
+                      "is below KLU's (small 2D meshes; doc/linear_solver.md, 'Band LU').");
     prm.leave_subsection();
     prm.leave_subsection();
   }
@@ -186,6 +191,7 @@ namespace anvil
     linear_tolerance      = prm.get_double("Tolerance");
     linear_max_iterations = prm.get_integer("Maximum iterations");
     amg_rebuild_growth    = prm.get_double("AMG rebuild growth");
+    direct_solver         = prm.get("Direct solver");
     const std::string limit = prm.get("Direct solver limit");
     if (limit == "measured")
       direct_solver_limit = measured_direct_solver_limit(dim);

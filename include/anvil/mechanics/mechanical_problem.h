@@ -92,6 +92,7 @@ namespace anvil
       unsigned int linear_max_iterations        = 1000;
       double       amg_rebuild_growth           = 0;
       unsigned int direct_solver_limit          = 200000;
+      std::string  direct_solver                = "auto"; // auto | klu | band
 
       static void declare_parameters(dealii::ParameterHandler &prm);
       void        parse_parameters(dealii::ParameterHandler &prm, const Scene &scene);
