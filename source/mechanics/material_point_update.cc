@@ -169,7 +169,7 @@ namespace anvil
             F_mat = f_bar.material_gradient(scratch, F, F_old, beta, F_mat_old);
           IncrementalKinematics &kin = p.kin;
           kin.reinit(F_mat, F_mat_old, formulation.objective_rate,
-                     kinematics_planar_path | (context.with_matrix ? kinematics_tangent : 0));
+                     kinematics_planar_path | (context.with_matrix ? kinematics_tangent : kinematics_increment));
           increment.strain_increment   = kin.strain_increment;
           increment.rotation_increment = kin.rotation_increment;
           increment.temperature        = heat ? scratch.T_new[q] : context.reference_temperature;
