@@ -492,24 +492,6 @@ namespace anvil
     }
 
     template <int dim>
-    ContactResult<dim> node_to_segment(const Point<dim>              &slave,
-                                       const Point<dim>              &slave_old,
-                                       const std::vector<Point<dim>> &master,
-                                       const std::vector<Point<dim>> &master_old,
-                                       const NodeState<dim>          &state,
-                                       const FrictionLaw             &law,
-                                       const bool                     tangent)
-    {
-      const unsigned int n_master = dim == 2 ? 2 : 4;
-      AssertThrow(master.size() == n_master && master_old.size() == n_master,
-                  ExcMessage("node_to_segment: the master needs " + std::to_string(n_master) +
-                             " nodes (2D: a segment, 3D: a bilinear facet)"));
-      ContactResult<dim> result;
-      node_to_segment(result, slave, slave_old, master.data(), master_old.data(), state, law, tangent);
-      return result;
-    }
-
-    template <int dim>
     void node_to_vertex(ContactResult<dim>   &result,
                         const Point<dim>     &slave,
                         const Point<dim>     &slave_old,
@@ -538,20 +520,6 @@ namespace anvil
     }
 
     template <int dim>
-    ContactResult<dim> node_to_vertex(const Point<dim>     &slave,
-                                      const Point<dim>     &slave_old,
-                                      const Point<dim>     &vertex,
-                                      const Point<dim>     &vertex_old,
-                                      const NodeState<dim> &state,
-                                      const FrictionLaw    &law,
-                                      const bool            tangent)
-    {
-      ContactResult<dim> result;
-      node_to_vertex(result, slave, slave_old, vertex, vertex_old, state, law, tangent);
-      return result;
-    }
-
-    template <int dim>
     void node_to_tool(ContactResult<dim>   &result,
                       const Point<dim>     &slave,
                       const Point<dim>     &slave_old,
@@ -572,34 +540,8 @@ namespace anvil
       evaluate<dim>(result, coordinates.data(), dim, geometry, state, law, tangent);
     }
 
-    template <int dim>
-    ContactResult<dim> node_to_tool(const Point<dim>     &slave,
-                                    const Point<dim>     &slave_old,
-                                    const RigidTool<dim> &tool,
-                                    const double          t,
-                                    const double          t_old,
-                                    const NodeState<dim> &state,
-                                    const FrictionLaw    &law,
-                                    const bool            tangent)
-    {
-      ContactResult<dim> result;
-      node_to_tool(result, slave, slave_old, tool, tool.displacement(t), tool.displacement(t_old), state,
-                   law, tangent);
-      return result;
-    }
-
 #define INSTANTIATE(dim)                                                                           \
   template bool              face_order_gives_outward_normal<dim>(unsigned int);                  \
-  template ContactResult<dim> node_to_segment(const Point<dim> &, const Point<dim> &,             \
-                                              const std::vector<Point<dim>> &,                    \
-                                              const std::vector<Point<dim>> &,                    \
-                                              const NodeState<dim> &, const FrictionLaw &, bool); \
-  template ContactResult<dim> node_to_vertex(const Point<dim> &, const Point<dim> &,              \
-                                             const Point<dim> &, const Point<dim> &,              \
-                                             const NodeState<dim> &, const FrictionLaw &, bool);  \
-  template ContactResult<dim> node_to_tool(const Point<dim> &, const Point<dim> &,                \
-                                           const RigidTool<dim> &, double, double,                \
-                                           const NodeState<dim> &, const FrictionLaw &, bool);    \
   template void node_to_segment(ContactResult<dim> &, const Point<dim> &, const Point<dim> &,      \
                                 const Point<dim> *, const Point<dim> *, const NodeState<dim> &,   \
                                 const FrictionLaw &, bool);                                       \

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <deal.II/base/exceptions.h>
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 #include <deal.II/lac/full_matrix.h>
@@ -7,6 +8,7 @@
 
 #include <anvil/contact/rigid_tool.h>
 
+#include <string>
 #include <vector>
 
 namespace anvil
@@ -208,5 +210,54 @@ namespace anvil
                       const NodeState<dim>         &state,
                       const FrictionLaw            &law,
                       bool                          tangent);
+
+    // The value-returning forms (tests, one-off callers) on the in-place ones.
+    template <int dim>
+    ContactResult<dim> node_to_segment(const dealii::Point<dim>              &slave,
+                                       const dealii::Point<dim>              &slave_old,
+                                       const std::vector<dealii::Point<dim>> &master,
+                                       const std::vector<dealii::Point<dim>> &master_old,
+                                       const NodeState<dim>                  &state,
+                                       const FrictionLaw                     &law,
+                                       const bool                             tangent)
+    {
+      const unsigned int n_master = dim == 2 ? 2 : 4;
+      AssertThrow(master.size() == n_master && master_old.size() == n_master,
+                  dealii::ExcMessage("node_to_segment: the master needs " + std::to_string(n_master) +
+                                     " nodes (2D: a segment, 3D: a bilinear facet)"));
+      ContactResult<dim> result;
+      node_to_segment(result, slave, slave_old, master.data(), master_old.data(), state, law, tangent);
+      return result;
+    }
+
+    template <int dim>
+    ContactResult<dim> node_to_vertex(const dealii::Point<dim> &slave,
+                                      const dealii::Point<dim> &slave_old,
+                                      const dealii::Point<dim> &vertex,
+                                      const dealii::Point<dim> &vertex_old,
+                                      const NodeState<dim>     &state,
+                                      const FrictionLaw        &law,
+                                      const bool                tangent)
+    {
+      ContactResult<dim> result;
+      node_to_vertex(result, slave, slave_old, vertex, vertex_old, state, law, tangent);
+      return result;
+    }
+
+    template <int dim>
+    ContactResult<dim> node_to_tool(const dealii::Point<dim> &slave,
+                                    const dealii::Point<dim> &slave_old,
+                                    const RigidTool<dim>     &tool,
+                                    const double              t,
+                                    const double              t_old,
+                                    const NodeState<dim>     &state,
+                                    const FrictionLaw        &law,
+                                    const bool                tangent)
+    {
+      ContactResult<dim> result;
+      node_to_tool(result, slave, slave_old, tool, tool.displacement(t), tool.displacement(t_old), state,
+                   law, tangent);
+      return result;
+    }
   } // namespace contact
 } // namespace anvil
