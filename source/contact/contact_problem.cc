@@ -426,8 +426,8 @@ namespace anvil
                                                  slot.state, law, *result, beyond_end);
                     bool extended = false; // best_face is an end segment extended (free_end_contact)
                     const auto note = [&](const unsigned int f) {
-                      insert_sorted(step_allowed, {p, pass, n, f});
-                      if (insert_sorted(allowed, {p, pass, n, f}))
+                      insert_sorted(step_allowed, {{p, pass, n, f}});
+                      if (insert_sorted(allowed, {{p, pass, n, f}}))
                         {
                           grew    = true;
                           missing = true;
