@@ -126,55 +126,7 @@ namespace anvil
     bool face_order_gives_outward_normal(unsigned int face);
 
     /**
-     * Slave node against a deformable master: a straight segment of 2 nodes
-     * (2D) or a bilinear facet of 4 nodes (3D), see the conventions above.
-     * @p tangent: also compute ContactResult::tangent.
-     */
-    template <int dim>
-    ContactResult<dim> node_to_segment(const dealii::Point<dim>              &slave,
-                                       const dealii::Point<dim>              &slave_old,
-                                       const std::vector<dealii::Point<dim>> &master,
-                                       const std::vector<dealii::Point<dim>> &master_old,
-                                       const NodeState<dim>                  &state,
-                                       const FrictionLaw                     &law,
-                                       bool                                   tangent);
-
-    /**
-     * Slave node behind a concave corner of a deformable master, in the region
-     * below the corner's vertex where it projects into neither face (the
-     * caller detects it): the closest master point is the vertex, the normal
-     * n = (x_v − x_s)/|x_v − x_s| and the gap −|x_v − x_s|, continuous with
-     * node_to_segment() on both faces at the region's edges. Friction as
-     * above, relative to the vertex. Residual and tangent ordered
-     * [slave (dim), vertex (dim)].
-     */
-    template <int dim>
-    ContactResult<dim> node_to_vertex(const dealii::Point<dim> &slave,
-                                      const dealii::Point<dim> &slave_old,
-                                      const dealii::Point<dim> &vertex,
-                                      const dealii::Point<dim> &vertex_old,
-                                      const NodeState<dim>     &state,
-                                      const FrictionLaw        &law,
-                                      bool                      tangent);
-
-    /**
-     * Slave node against a rigid tool at time @p t (the step being from
-     * @p t_old): gap and normal from RigidTool::project(), the tangential
-     * increment relative to the tool's translation. The residual and tangent
-     * have only the slave's dim components; projection_inside is always true.
-     */
-    template <int dim>
-    ContactResult<dim> node_to_tool(const dealii::Point<dim> &slave,
-                                    const dealii::Point<dim> &slave_old,
-                                    const RigidTool<dim>     &tool,
-                                    double                    t,
-                                    double                    t_old,
-                                    const NodeState<dim>     &state,
-                                    const FrictionLaw        &law,
-                                    bool                      tangent);
-
-    /**
-     * The same three elements evaluated into @p result, whose storage is
+     * The three contact elements (each documented at its value-returning form below) evaluated into @p result, whose storage is
      * reused (the assembly keeps one per kind): once it has held a result of
      * this size, a residual-only evaluation allocates nothing. The master's
      * dim == 2 ? 2 : 4 nodes are given as arrays; the tool by its translations
@@ -211,7 +163,11 @@ namespace anvil
                       const FrictionLaw            &law,
                       bool                          tangent);
 
-    // The value-returning forms (tests, one-off callers) on the in-place ones.
+    /**
+     * Slave node against a deformable master: a straight segment of 2 nodes
+     * (2D) or a bilinear facet of 4 nodes (3D), see the conventions above.
+     * @p tangent: also compute ContactResult::tangent.
+     */
     template <int dim>
     ContactResult<dim> node_to_segment(const dealii::Point<dim>              &slave,
                                        const dealii::Point<dim>              &slave_old,
@@ -230,6 +186,15 @@ namespace anvil
       return result;
     }
 
+    /**
+     * Slave node behind a concave corner of a deformable master, in the region
+     * below the corner's vertex where it projects into neither face (the
+     * caller detects it): the closest master point is the vertex, the normal
+     * n = (x_v − x_s)/|x_v − x_s| and the gap −|x_v − x_s|, continuous with
+     * node_to_segment() on both faces at the region's edges. Friction as
+     * above, relative to the vertex. Residual and tangent ordered
+     * [slave (dim), vertex (dim)].
+     */
     template <int dim>
     ContactResult<dim> node_to_vertex(const dealii::Point<dim> &slave,
                                       const dealii::Point<dim> &slave_old,
@@ -244,6 +209,12 @@ namespace anvil
       return result;
     }
 
+    /**
+     * Slave node against a rigid tool at time @p t (the step being from
+     * @p t_old): gap and normal from RigidTool::project(), the tangential
+     * increment relative to the tool's translation. The residual and tangent
+     * have only the slave's dim components; projection_inside is always true.
+     */
     template <int dim>
     ContactResult<dim> node_to_tool(const dealii::Point<dim> &slave,
                                     const dealii::Point<dim> &slave_old,
