@@ -8,6 +8,8 @@
 // - where it does not, several steps, none rejected;
 // - the answer stays within the integrator's tolerance of the closed form,
 //   and the step count does not depend on the process count (np 1 = np 2).
+#include "check.h"
+
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/trilinos_vector.h>
@@ -25,15 +27,8 @@ using namespace anvil;
 
 namespace
 {
-  int  failures = 0;
-  bool root     = true;
-
-  void check(const bool ok, const std::string &what)
-  {
-    if (root)
-      std::cout << (ok ? "  PASS " : "  FAIL ") << what << std::endl;
-    failures += ok ? 0 : 1;
-  }
+  anvil::testing::Checks check;
+  bool                   root = true;
 
   /// M ẏ = −K y, both diagonal: (M − γJ)⁻¹ and M⁻¹ are exact divisions.
   struct Diagonal : thermal::ImplicitSystem
@@ -156,6 +151,7 @@ int main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  check.print_on_this_process(root);
   try
     {
       run(20., 1e-3, 40, true);  // slow decay: one step of the span passes
@@ -166,7 +162,5 @@ int main(int argc, char **argv)
       std::cerr << "exception: " << e.what() << std::endl;
       return 2;
     }
-  if (root)
-    std::cout << (failures == 0 ? "\nall checks passed\n" : "\nFAILED checks: " + std::to_string(failures) + "\n");
-  return failures == 0 ? 0 : 1;
+  return check.finish();
 }

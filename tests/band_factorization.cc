@@ -13,6 +13,8 @@
 // of 2 unknowns per point: at most 2 (w + 2) below and above); the automatic
 // choice: band on the 2D strip, KLU on a 3D cube's graph.
 // Under mpirun -np 2 the band is never used (KLU gathers the matrix).
+#include "check.h"
+
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -34,16 +36,9 @@ using Coupling = std::function<void(unsigned int, const std::function<void(unsig
 
 namespace
 {
-  int        failures = 0;
-  bool       root     = true;
   MPI_Comm   comm     = MPI_COMM_WORLD;
-
-  void check(const bool ok, const std::string &what)
-  {
-    failures += !ok;
-    if (root)
-      std::cout << what << (ok ? " ok" : " FAILED") << std::endl;
-  }
+  anvil::testing::Checks check;
+  bool                   root = true;
 
   /// The matrix of @p couplings (i's columns) with values from @p value.
   void build(TrilinosWrappers::SparseMatrix &A, const IndexSet &owned, const Coupling &couplings,
@@ -95,6 +90,7 @@ int main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   root = Utilities::MPI::this_mpi_process(comm) == 0;
+  check.print_on_this_process(root);
   const bool one = Utilities::MPI::n_mpi_processes(comm) == 1;
 
   // A w × h grid of points, 2 unknowns each, numbered at random.
@@ -205,5 +201,5 @@ int main(int argc, char **argv)
               << automatic_3d.klu_estimated_flops << std::endl;
   check(std::string(automatic_3d.last_method()) == "klu",
         std::string("automatic, 3D cube 18^3: ") + automatic_3d.last_method() + " (expected klu)");
-  return failures == 0 ? 0 : 1;
+  return check.finish();
 }

@@ -25,6 +25,8 @@
 //     zero past the taper; on an extruded flat facet the slave's force equals
 //     the 2D tapered end segment's (free_end_contact).
 // Prints the numbers; returns nonzero on failure.
+#include "check.h"
+
 #include <deal.II/base/geometry_info.h>
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/differentiation/ad.h>
@@ -56,16 +58,7 @@ using ADNumber = Sacado::Fad::DFad<double>;
 
 namespace
 {
-  unsigned int failures = 0;
-
-  void check(const bool ok, const std::string &what)
-  {
-    if (!ok)
-      {
-        ++failures;
-        std::cout << "  FAILED: " << what << std::endl;
-      }
-  }
+  anvil::testing::Checks check{anvil::testing::Checks::Print::failures_only};
 
   bool close(const double a, const double b, const double tol)
   {
@@ -996,7 +989,5 @@ int main()
       std::cout << "exception: " << e.what() << std::endl;
       return 1;
     }
-  std::cout << (failures == 0 ? "all contact element checks passed" : std::to_string(failures) + " checks FAILED")
-            << std::endl;
-  return failures == 0 ? 0 : 1;
+  return check.finish();
 }

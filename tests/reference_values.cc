@@ -11,6 +11,8 @@
 //     most a handful of entries), every distorted 3D cell has its own, and
 //     a budget too small for the entries gives none (the assembly then runs
 //     FEValues per cell).
+#include "check.h"
+
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
@@ -30,14 +32,7 @@ using namespace anvil::MechanicsAssembly;
 
 namespace
 {
-  int failures = 0;
-
-  void check(const bool ok, const char *what)
-  {
-    std::printf("%-70s %s\n", what, ok ? "ok" : "FAILED");
-    if (!ok)
-      ++failures;
-  }
+  anvil::testing::Checks check;
 
   bool same(const double a, const double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
@@ -162,6 +157,5 @@ int main()
         check(values->n_entries() == tria.n_active_cells(), "3D distorted: one entry per cell");
       }
   }
-  std::printf("%s\n", failures ? "FAILED" : "all checks passed");
-  return failures ? 1 : 0;
+  return check.finish();
 }

@@ -17,6 +17,8 @@
 //     with any face it may touch (brute force over all pairs, no search);
 //  4. the outward normals of faces (face_normal) against closed forms.
 // Prints the numbers; returns nonzero on failure.
+#include "check.h"
+
 #include <anvil/contact/contact_element.h>
 #include <anvil/contact/self_contact.h>
 
@@ -30,14 +32,7 @@ using namespace anvil::contact;
 
 namespace
 {
-  unsigned int failures = 0;
-
-  void check(const bool ok, const std::string &what)
-  {
-    std::cout << (ok ? "PASS  " : "FAIL  ") << what << std::endl;
-    if (!ok)
-      ++failures;
-  }
+  anvil::testing::Checks check;
 
   /// A polyline surface: nodes and faces (i, i+1), the body on its right.
   struct Polyline
@@ -322,6 +317,5 @@ int main()
   element_on_own_boundary();
   no_contact_with_itself();
   normals();
-  std::cout << (failures ? std::to_string(failures) + " check(s) failed" : "all checks passed") << std::endl;
-  return failures ? 1 : 0;
+  return check.finish();
 }

@@ -4,6 +4,8 @@
 // integral of a per-point source on a moved configuration (some cells zero),
 // the temperatures at quadrature points. Plane and axisymmetric; runs the
 // same under mpirun -np 2.
+#include "check.h"
+
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
@@ -25,15 +27,8 @@ using namespace anvil;
 
 namespace
 {
-  int  failures = 0;
-  bool root     = true;
-
-  void check(const bool ok, const std::string &what)
-  {
-    if (root)
-      std::cout << (ok ? "  PASS " : "  FAIL ") << what << std::endl;
-    failures += ok ? 0 : 1;
-  }
+  anvil::testing::Checks check;
+  bool                   root = true;
 
   constexpr double rho = 7.8e-9, cap = 4.6e8;
 
@@ -171,6 +166,7 @@ int main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  check.print_on_this_process(root);
   try
     {
       run(false);
@@ -181,7 +177,5 @@ int main(int argc, char **argv)
       std::cerr << "exception: " << e.what() << std::endl;
       return 2;
     }
-  if (root)
-    std::cout << (failures == 0 ? "\nall checks passed\n" : "\nFAILED checks: " + std::to_string(failures) + "\n");
-  return failures == 0 ? 0 : 1;
+  return check.finish();
 }

@@ -3,6 +3,8 @@
 //  2. steady slab with a fixed temperature and convection (2D and 3D);
 //  3. axisymmetric steady radial conduction through a thick cylinder wall.
 // Runs the same under mpirun -np 2. Prints every measured number; exits 1 on a failed check.
+#include "check.h"
+
 #include <deal.II/base/function.h>
 #include <deal.II/base/function_parser.h>
 #include <deal.II/base/mpi.h>
@@ -25,15 +27,8 @@ using namespace anvil;
 
 namespace
 {
-  int  failures = 0;
-  bool root     = true;
-
-  void check(const bool ok, const std::string &what)
-  {
-    if (root)
-      std::cout << (ok ? "  PASS " : "  FAIL ") << what << std::endl;
-    failures += ok ? 0 : 1;
-  }
+  anvil::testing::Checks check;
+  bool                   root = true;
 
   // Steel-like: rho c = 3.588 N/(mm^2 K), k = 50 N/(s K): kappa = 13.94 mm^2/s.
   constexpr double rho = 7.8e-9, cap = 4.6e8, k0 = 50, kappa = k0 / (rho * cap);
@@ -394,6 +389,7 @@ int main(int argc, char **argv)
 {
   Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   root = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  check.print_on_this_process(root);
   std::cout << std::unitbuf;
   if (root)
     std::cout << "thermal_conduction on " << Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) << " process(es)\n"
@@ -411,7 +407,5 @@ int main(int argc, char **argv)
       std::cerr << "exception: " << e.what() << std::endl;
       return 2;
     }
-  if (root)
-    std::cout << (failures == 0 ? "\nall checks passed\n" : "\nFAILED checks: " + std::to_string(failures) + "\n");
-  return failures == 0 ? 0 : 1;
+  return check.finish();
 }
