@@ -111,6 +111,22 @@ namespace anvil
     // Aggregate nodes, not dofs: a node's components move together in
     // every mode, and splitting them would cut the modes apart.
     list.set("PDE equations", static_cast<int>(settings.components));
+    // ML's default ("Uncoupled-MIS", which stays uncoupled here) aggregates
+    // each process's rows apart on every level, so the coarse levels cannot
+    // join what the partition separates: two bodies in contact on one process
+    // each (the contact strip) got aggregates of half the size from level 1
+    // on, a fifth level and 12 % more operator complexity than on one
+    // process. MIS aggregates across processes; on the coarse levels
+    // (a sixth of the rows and less) it costs little, and the fine level,
+    // where it would cost most, stays uncoupled (doc/performance.md,
+    // "Two processes on the large cases").
+    // ANVIL_COARSE_AGGREGATION=uncoupled keeps ML's default (benchmarks, tests).
+    const char *coarse = std::getenv("ANVIL_COARSE_AGGREGATION");
+    if (K.trilinos_matrix().Comm().NumProc() > 1 && !(coarse && std::string(coarse) == "uncoupled"))
+      {
+        list.set("aggregation: type", "MIS");
+        list.set("aggregation: type (level 0)", "Uncoupled");
+      }
     if (settings.aggregate_blocks)
       {
         // ML's own sweep count does not reach a user smoother: the sweeps
