@@ -4,12 +4,11 @@ cells body by body, so on two processes each strip is one process's and the
 contact surface is the whole process boundary).
 
 Independent answer: the direct solve (KLU, one process), exact to round-off.
-The iterative runs on one process, on two with the coarse levels aggregated
-across the processes (the default, build_amg(): ML's MIS from level 1 on),
-and on two with ML's per-process aggregation (ANVIL_COARSE_AGGREGATION=
-uncoupled, as before session 13) must all give its reaction and energy
-histories to 1e-8 of their largest value (Newton to 1e-12, the linear solves
-to 1e-10).
+The iterative runs on one process, on two with ML's per-process aggregation
+(the default) and on two with the coarse levels aggregated across the
+processes (ANVIL_COARSE_AGGREGATION=coupled, build_amg(): ML's MIS from
+level 1 on) must all give its reaction and energy histories to 1e-8 of their
+largest value (Newton to 1e-12, the linear solves to 1e-10).
 
 The hierarchy itself (ML's own report, "ML output" 10): on two processes
 the coupled coarse aggregation must build as many levels as one process
@@ -35,7 +34,7 @@ def levels(stdout):
 
 out, counts = {}, {}
 runs = [("direct", 1, "direct", None), ("iterative_np1", 1, "iterative", None),
-        ("iterative_np2", 2, "iterative", None), ("uncoupled_np2", 2, "iterative", "uncoupled")]
+        ("iterative_np2", 2, "iterative", None), ("coupled_np2", 2, "iterative", "coupled")]
 for name, np, solver, aggregation in runs:
     os.environ["ANVIL_ML_PARAMETERS"] = "ML output:int=10"
     if aggregation:
@@ -54,13 +53,13 @@ os.environ.pop("ANVIL_ML_PARAMETERS", None)
 os.environ.pop("ANVIL_COARSE_AGGREGATION", None)
 
 one = max(counts["iterative_np1"] or [0])
-check(max(counts["iterative_np2"] or [0]) == one,
-      "np 2, coupled coarse aggregation: %d levels as on one process (%d)" % (max(counts["iterative_np2"] or [0]), one))
-check(max(counts["uncoupled_np2"] or [0]) > one,
+check(max(counts["coupled_np2"] or [0]) == one,
+      "np 2, coupled coarse aggregation: %d levels as on one process (%d)" % (max(counts["coupled_np2"] or [0]), one))
+check(max(counts["iterative_np2"] or [0]) > one,
       "np 2, per-process aggregation: %d levels, more than one process's %d (the case tests the coupling)"
-      % (max(counts["uncoupled_np2"] or [0]), one))
+      % (max(counts["iterative_np2"] or [0]), one))
 
-for name in ("iterative_np1", "iterative_np2", "uncoupled_np2"):
+for name in ("iterative_np1", "iterative_np2", "coupled_np2"):
     for f in ("reactions.csv", "energy.csv"):
         a, b = read_csv(out["direct"] + "/" + f), read_csv(out[name] + "/" + f)
         keys = [k for k in a if k in b]
