@@ -24,7 +24,10 @@ The environment reaches every run: ANVIL_ML_PARAMETERS sets ML's parameters
 (e.g. 'smoother: type (level 0)=IFPACK; ...') and ANVIL_ISOCHORIC_MODES=1 adds
 the isochoric linear fields to the near-null space, ANVIL_FINE_SMOOTHER=blocks
 smooths the fine level with anvil's aggregate-block Gauss-Seidel
-(ANVIL_BLOCK_SWEEPS sweeps per smoothing, default 2; doc/linear_solver.md).
+(ANVIL_BLOCK_SWEEPS sweeps per smoothing, default 2; doc/linear_solver.md),
+ANVIL_COARSE_AGGREGATION=coupled aggregates ML's levels 1 and coarser across
+the processes (MIS; doc/performance.md, session 13). OMPI_MCA_mpi_yield_when_idle=1
+keeps a waiting rank from spinning when the machine is shared.
 
 --set passes an entry to every run (e.g. 'Mechanics/Linear solver/AMG rebuild
 growth=0' for the hierarchy built at every solve, as before session 8).

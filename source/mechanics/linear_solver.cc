@@ -111,6 +111,22 @@ namespace anvil
     // Aggregate nodes, not dofs: a node's components move together in
     // every mode, and splitting them would cut the modes apart.
     list.set("PDE equations", static_cast<int>(settings.components));
+    // ML's default ("Uncoupled-MIS", which stays uncoupled here) aggregates
+    // each process's rows apart on every level: two bodies in contact on
+    // one process each (the contact strip) get aggregates of half the size
+    // from level 1 on, one more level and 12 % more operator complexity
+    // than on one process. ANVIL_COARSE_AGGREGATION=coupled aggregates the
+    // levels from 1 on across the processes (ML's MIS; level 0, where it
+    // would cost most, stays per process). Not the default: the strip keeps
+    // its Krylov count either way, its set-up gains nothing below ~10^5 DoFs,
+    // and the 3D plastic block at 20^3 needs 70.4 instead of 67.8 Krylov
+    // iterations per solve (doc/performance.md, session 13).
+    const char *coarse = std::getenv("ANVIL_COARSE_AGGREGATION");
+    if (coarse && std::string(coarse) == "coupled" && K.trilinos_matrix().Comm().NumProc() > 1)
+      {
+        list.set("aggregation: type", "MIS");
+        list.set("aggregation: type (level 0)", "Uncoupled");
+      }
     if (settings.aggregate_blocks)
       {
         // ML's own sweep count does not reach a user smoother: the sweeps
