@@ -1,7 +1,7 @@
-// Raw-storage helpers of the J2 point's tangents (j2_plasticity.cc, its only
-// includer): filling and updating SymmetricTensor<4,3> entries without
-// deal.II's temporaries. Internal linkage (an unnamed namespace), as where
-// they came from: with external linkage GCC stops inlining the single-caller
+// Raw-storage helpers of the J2 point's tangents (j2_finish.cc and
+// j2_plasticity.cc): filling and updating SymmetricTensor<4,3> entries
+// without deal.II's temporaries. Internal linkage (an unnamed namespace):
+// with external linkage GCC stops inlining the single-caller
 // fill_tangent/fill_sensitivity (+7 % instructions per J2 update).
 #pragma once
 
