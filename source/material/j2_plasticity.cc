@@ -62,8 +62,12 @@ namespace anvil
       // From this point's last ΔT_ad (the previous Newton iterate's, or the
       // previous step's): within Newton the state moves little, so the
       // first residual is already small and the secant needs fewer return
-      // maps than from 0.
-      double x0 = 0, f0 = 0, x1 = adiabatic_guess, f1 = 0;
+      // maps than from 0. The first step is Newton's with the last tangent's
+      // ∂f/∂x (adiabatic_temperature_derivative; 0 before the first: the
+      // plain fixed point): x + (f(x) − x)/(1 − ∂f/∂x).
+      const double first_slope = 1 - adiabatic_temperature_derivative;
+      const double first_scale = first_slope > 0.5 && first_slope < 2 ? 1 / first_slope : 1.;
+      double       x0 = 0, f0 = 0, x1 = adiabatic_guess, f1 = 0;
       for (unsigned int it = 0; it < 50; ++it)
         {
           evaluate(increment, increment.temperature + x1, increment.temperature_increment + x1,
@@ -71,7 +75,7 @@ namespace anvil
           f1 = t.adiabatic_temperature_increment - x1;
           if (std::abs(f1) <= 1e-12 * (1 + std::abs(x1)))
             break;
-          double next = x1 + f1; // plain fixed point first
+          double next = x1 + first_scale * f1;
           if (it > 0 && f1 != f0)
             next = x1 - f1 * (x1 - x0) / (f1 - f0);
           x0 = x1, f0 = f1, x1 = next;
@@ -94,10 +98,10 @@ namespace anvil
           const double                amplification = 1 / (1 - df_dx);
           const SymmetricTensor<2, 3> &dsigma_dT = response.stress_temperature_derivative;
           add_outer_product(response.tangent, amplification, dsigma_dT, df_de);
-          if (response.sensitivity_is_identity)
-            fill_identity(response.rotated_stress_sensitivity);
-          response.sensitivity_is_identity = false;
-          add_outer_product(response.rotated_stress_sensitivity, amplification, dsigma_dT, df_ds);
+          // ∂f/∂σ̃ₙ ∝ the plastic work's n: zero at an elastic point, whose
+          // ∂σ/∂σ̃ₙ stays the identity (flagged: the mechanics skips S : δσ̃).
+          if (t.dp > 0)
+            add_outer_product(response.rotated_stress_sensitivity, amplification, dsigma_dT, df_ds);
           // f ∝ J (sources per current volume): ∂f/∂ln J = f(x1) = x1 + f1.
           response.volume_ratio_sensitivity = (amplification * (x1 + f1)) * dsigma_dT;
         }

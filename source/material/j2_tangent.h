@@ -31,16 +31,6 @@ namespace anvil
           c[6 * p + q] += s * (ar[p] * br[q]);
     }
 
-    /// I_sym on raw storage: 1 on the normal, 1/2 on the shear diagonal.
-    inline void fill_identity(SymmetricTensor<4, 3> &S)
-    {
-      double *c = S.begin_raw();
-      for (unsigned int p = 0; p < 36; ++p)
-        c[p] = 0;
-      for (unsigned int p = 0; p < 6; ++p)
-        c[7 * p] = p < 3 ? 1. : 0.5;
-    }
-
     // The unrolled (raw) storage of SymmetricTensor<2,3> is 00, 11, 22, 01, 02, 12,
     // that of SymmetricTensor<4,3> the 6x6 matrix of components C_{(ij)(kl)} in
     // that order, row by row (deal.II's contractions weigh the off-diagonal
