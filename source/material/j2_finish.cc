@@ -75,19 +75,26 @@ namespace anvil
       if (request & request_temperature_derivative)
         {
           // ∂σ/∂T_{n+1} at fixed Δε and σ_n (T_n fixed, so ∂ΔT/∂T = 1).
-          static const SymmetricTensor<2, 3> I = unit_symmetric_tensor<3>();
-          SymmetricTensor<2, 3>              de_t, n_t;
-          for (unsigned int c = 0; c < 6; ++c)
-            {
-              de_t.access_raw_entry(c) = de[c];
-              n_t.access_raw_entry(c)  = n[c];
-            }
-          const double                g = el.relative_modulus_derivative(T);
-          const SymmetricTensor<2, 3> dtrial =
-            g * (K * tr_de * I + 2 * G * deviator(de_t)) - 3 * K * deth * I;
+          //   ∂σ_tr/∂T = g (K tr Δεᵉ I + 2G dev Δεᵉ) − 3K ∂Δε_th/∂T I,
+          // entry by entry as deal.II's operators form it (I's zeros included:
+          // the same bits), without its temporaries.
+          const double          g = el.relative_modulus_derivative(T);
+          SymmetricTensor<2, 3> dtrial;
+          {
+            const double k_tr = K * tr_de, two_G = 2 * G, th = 3 * K * deth;
+            const double mean = (de[0] + de[1] + de[2]) / 3; // deviator(): trace / dim
+            double      *d    = dtrial.begin_raw();
+            for (unsigned int c = 0; c < 3; ++c)
+              d[c] = g * (k_tr * 1. + (de[c] - mean) * two_G) - th * 1.;
+            for (unsigned int c = 3; c < 6; ++c)
+              d[c] = g * (k_tr * 0. + de[c] * two_G) - th * 0.;
+          }
           SymmetricTensor<2, 3> ds = dtrial;
           if (dp > 0)
             {
+              SymmetricTensor<2, 3> n_t;
+              for (unsigned int c = 0; c < 6; ++c)
+                n_t.access_raw_entry(c) = n[c];
               // Johnson-Cook: V = σ_h C ln(ε̄̇/ε̇₀), so ∂V/∂T = (V/σ_h) ∂σ_h/∂T.
               V.temperature_derivative =
                 model.johnson_cook_rate.active() ?
