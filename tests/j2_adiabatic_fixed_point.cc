@@ -138,7 +138,7 @@ int main()
     " subsection Modulus temperature factor\n set Model = linear\n set Softening = 4e-4\n end\n"
     "end\n";
   const std::vector<std::pair<std::string, std::string>> cases = {
-    {"J2 linear hardening, linear softening (eq. 35; the tube's)",
+    {"J2 linear hardening, linear softening (eq. 35; the tube's laws)",
      "set Model = J2\n" + elastic +
        "subsection Hardening\n set Model = linear\n set Initial yield stress = 150\n"
        " set Hardening modulus = 1000\n subsection Thermal softening\n set Model = linear\n"
