@@ -1,7 +1,7 @@
-// Raw-storage helpers of the J2 point's tangents (j2_plasticity.cc, its only
-// includer): filling and updating SymmetricTensor<4,3> entries without
-// deal.II's temporaries. Internal linkage (an unnamed namespace), as where
-// they came from: with external linkage GCC stops inlining the single-caller
+// Raw-storage helpers of the J2 point's tangents (j2_finish.cc and
+// j2_plasticity.cc): filling and updating SymmetricTensor<4,3> entries
+// without deal.II's temporaries. Internal linkage (an unnamed namespace):
+// with external linkage GCC stops inlining the single-caller
 // fill_tangent/fill_sensitivity (+7 % instructions per J2 update).
 #pragma once
 
@@ -29,16 +29,6 @@ namespace anvil
       for (unsigned int p = 0; p < n; ++p)
         for (unsigned int q = 0; q < n; ++q)
           c[6 * p + q] += s * (ar[p] * br[q]);
-    }
-
-    /// I_sym on raw storage: 1 on the normal, 1/2 on the shear diagonal.
-    inline void fill_identity(SymmetricTensor<4, 3> &S)
-    {
-      double *c = S.begin_raw();
-      for (unsigned int p = 0; p < 36; ++p)
-        c[p] = 0;
-      for (unsigned int p = 0; p < 6; ++p)
-        c[7 * p] = p < 3 ? 1. : 0.5;
     }
 
     // The unrolled (raw) storage of SymmetricTensor<2,3> is 00, 11, 22, 01, 02, 12,

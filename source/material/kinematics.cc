@@ -15,19 +15,6 @@ namespace anvil
       return F[0][2] == 0 && F[1][2] == 0 && F[2][0] == 0 && F[2][1] == 0;
     }
 
-    /// The inverse of [A_2x2, 0; 0, a₃₃].
-    Tensor<2, 3> planar_inverse(const Tensor<2, 3> &A)
-    {
-      const double d = A[0][0] * A[1][1] - A[0][1] * A[1][0];
-      Tensor<2, 3> inverse;
-      inverse[0][0] = A[1][1] / d;
-      inverse[0][1] = -A[0][1] / d;
-      inverse[1][0] = -A[1][0] / d;
-      inverse[1][1] = A[0][0] / d;
-      inverse[2][2] = 1 / A[2][2];
-      return inverse;
-    }
-
     /**
      * For a skew h with axial vector w, |w|² = h₀₁² + h₀₂² + h₁₂²:
      *   (I − h)⁻¹ = I + g,  (I − h)⁻¹(I + h) = I + 2g,  g = (h + h²)/(1 + |w|²)
@@ -50,6 +37,7 @@ namespace anvil
     if (rate == ObjectiveRate::jaumann && (what & kinematics_planar_path) && is_planar(F) &&
         is_planar(F_old))
       return reinit_planar(what);
+    off_block_zero = false;
     if (what & kinematics_inverse)
       {
         J     = determinant(F);
@@ -105,8 +93,28 @@ namespace anvil
     // Every tensor is [2x2 block, 0; 0, (2,2)]: the spin has the one
     // component s = h₀₁ of ½Δω, and the Cayley transforms are plane rotations,
     // (I − h)⁻¹ = I + g with g₀₀ = g₁₁ = −s²/(1 + s²), g₀₁ = −g₁₀ = s/(1 + s²).
-    F_half_inv = planar_inverse(0.5 * (F + F_old));
-    dL         = Tensor<2, 3>();
+    // Only the block entries are written: the others are zeroed once, and stay
+    // zero while the planar path alone writes (off_block_zero).
+    if (!off_block_zero)
+      {
+        for (Tensor<2, 3> *T : {&F_inv, &F_half_inv, &dL, &A_inv, &A_half_inv, &half_rotation,
+                                &rotation_increment})
+          *T = Tensor<2, 3>();
+        mid_strain = strain_increment = SymmetricTensor<2, 3>();
+        off_block_zero                 = true;
+      }
+    {
+      // (½(F + F_n))⁻¹ on the block's entries.
+      const double H00 = 0.5 * (F[0][0] + F_old[0][0]), H01 = 0.5 * (F[0][1] + F_old[0][1]);
+      const double H10 = 0.5 * (F[1][0] + F_old[1][0]), H11 = 0.5 * (F[1][1] + F_old[1][1]);
+      const double H22 = 0.5 * (F[2][2] + F_old[2][2]);
+      const double d   = H00 * H11 - H01 * H10;
+      F_half_inv[0][0] = H11 / d;
+      F_half_inv[0][1] = -H01 / d;
+      F_half_inv[1][0] = -H10 / d;
+      F_half_inv[1][1] = H00 / d;
+      F_half_inv[2][2] = 1 / H22;
+    }
     for (unsigned int i = 0; i < 2; ++i)
       for (unsigned int j = 0; j < 2; ++j)
         dL[i][j] = (F[i][0] - F_old[i][0]) * F_half_inv[0][j] +
@@ -114,28 +122,30 @@ namespace anvil
     dL[2][2] = (F[2][2] - F_old[2][2]) * F_half_inv[2][2];
     if (what & kinematics_inverse)
       {
-        J     = (F[0][0] * F[1][1] - F[0][1] * F[1][0]) * F[2][2];
-        F_inv = planar_inverse(F);
+        J              = (F[0][0] * F[1][1] - F[0][1] * F[1][0]) * F[2][2];
+        const double d = F[0][0] * F[1][1] - F[0][1] * F[1][0];
+        F_inv[0][0]    = F[1][1] / d;
+        F_inv[0][1]    = -F[0][1] / d;
+        F_inv[1][0]    = -F[1][0] / d;
+        F_inv[1][1]    = F[0][0] / d;
+        F_inv[2][2]    = 1 / F[2][2];
       }
     const double s = 0.25 * (dL[0][1] - dL[1][0]);
     // I + c g: c = 1 the inverse, c = 2 the rotation (cayley_part()).
-    auto plane = [](const double s, const double c) {
+    auto plane = [](Tensor<2, 3> &T, const double s, const double c) {
       const double w = 1 / (1 + s * s);
-      Tensor<2, 3> T;
       T[0][0] = T[1][1] = 1 - c * s * s * w;
       T[0][1]           = c * s * w;
       T[1][0]           = -c * s * w;
       T[2][2]           = 1;
-      return T;
     };
-    rotation_increment = plane(s, 2);
-    half_rotation      = plane(0.5 * s, 2);
+    plane(rotation_increment, s, 2);
+    plane(half_rotation, 0.5 * s, 2);
     if (what & kinematics_tangent)
       {
-        A_inv      = plane(s, 1);
-        A_half_inv = plane(0.5 * s, 1);
+        plane(A_inv, s, 1);
+        plane(A_half_inv, 0.5 * s, 1);
       }
-    mid_strain       = SymmetricTensor<2, 3>();
     mid_strain[0][0] = dL[0][0];
     mid_strain[1][1] = dL[1][1];
     mid_strain[0][1] = 0.5 * (dL[0][1] + dL[1][0]);
@@ -146,7 +156,6 @@ namespace anvil
     for (unsigned int i = 0; i < 2; ++i)
       for (unsigned int l = 0; l < 2; ++l)
         M[i][l] = Q[i][0] * mid_strain[0][l] + Q[i][1] * mid_strain[1][l];
-    strain_increment       = SymmetricTensor<2, 3>();
     strain_increment[0][0] = M[0][0] * Q[0][0] + M[0][1] * Q[0][1];
     strain_increment[1][1] = M[1][0] * Q[1][0] + M[1][1] * Q[1][1];
     strain_increment[0][1] =

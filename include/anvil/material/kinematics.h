@@ -73,6 +73,9 @@ namespace anvil
 
   private:
     void reinit_planar(unsigned int what);
+    /// Every tensor above is zero outside the [2x2, 0; 0, (2,2)] pattern
+    /// (the planar path wrote last): reinit_planar() writes the block only.
+    bool off_block_zero = false;
   };
 
   /**

@@ -1,0 +1,166 @@
+// The J2 point's finish(): from one return map (evaluate()) the stress and
+// state, the consistent tangent and ∂σ/∂σ̃ₙ, ∂σ/∂T, the heat sources and the
+// partial derivatives of ΔT_ad the adiabatic tangent needs.
+#include <anvil/material/j2_plasticity.h>
+
+#include "j2_point.h"
+#include "j2_tangent.h"
+
+#include <cmath>
+
+namespace anvil
+{
+  namespace j2
+  {
+    using dealii::unit_symmetric_tensor;
+
+    void J2Point::finish(const MaterialIncrement &inc, const MaterialRequest request, Trial &t,
+                         MaterialResponse &response)
+    {
+      const ElasticLaw &el = model.elastic;
+      const double      T = t.T, K = t.K, G = t.G, beta = t.beta, deth = t.deth;
+      const double      dp = t.dp, H = t.H, norm_s = t.norm_s, q_trial = t.q_trial, tr_de = t.tr_de;
+      const double     *trial = t.trial, *de = t.de, *s = t.s;
+      HardeningLaw::Value &Y = t.Y;
+      PerzynaLaw::Value   &V = t.V;
+      const HardeningLaw::Value &Y_start = t.Y_start;
+      response.return_iterations = t.return_iterations;
+      if (t.linear_return && (request & request_temperature_derivative))
+        Y = yield(eps_n + dp, T);
+
+      // Radial return: σ = trial − √6 G Δε̄ n, n = s/|s|.
+      // n enters only through Δε̄ > 0 terms (elastic: zero, as for |s| = 0).
+      double n[6] = {0, 0, 0, 0, 0, 0};
+      if (dp > 0)
+        {
+          const double inv_norm = 1 / norm_s;
+          for (unsigned int c = 0; c < 6; ++c)
+            n[c] = s[c] * inv_norm;
+        }
+      double *sigma = response.stress.begin_raw();
+      if (dp > 0)
+        {
+          const double radial = std::sqrt(6.) * G * dp;
+          for (unsigned int c = 0; c < 6; ++c)
+            sigma[c] = trial[c] - radial * n[c];
+        }
+      else
+        for (unsigned int c = 0; c < 6; ++c)
+          sigma[c] = trial[c];
+      current = response.stress;
+      eps_c   = eps_n + dp;
+      response.equivalent_plastic_strain = eps_c;
+
+      if (request & request_tangent)
+        {
+          double *C = response.tangent.begin_raw();
+          if (dp > 0)
+            {
+              // Consistent tangent of the radial return (Simo & Hughes 1998, box 3.2,
+              // with H' including the viscous term of eq. 18):
+              //   C = K δ⊗δ + 2G ((1 − a) I_dev + (a − b) n⊗n),
+              //   ∂σ/∂σ̃ₙ = I_sym − b n⊗n − a (I_dev − n⊗n).
+              const double a = 3 * G * dp / q_trial, b = 3 * G / (3 * G + H);
+              fill_tangent<true>(C, K, 2 * G * (1 - a), 2 * G * (a - b), n);
+              response.sensitivity_is_identity = false;
+              fill_sensitivity(response.rotated_stress_sensitivity.begin_raw(), a, b, n);
+            }
+          else
+            {
+              fill_tangent<false>(C, K, 2 * G, 0., n);
+              response.sensitivity_is_identity = true;
+            }
+        }
+
+      if (request & request_temperature_derivative)
+        {
+          // ∂σ/∂T_{n+1} at fixed Δε and σ_n (T_n fixed, so ∂ΔT/∂T = 1).
+          //   ∂σ_tr/∂T = g (K tr Δεᵉ I + 2G dev Δεᵉ) − 3K ∂Δε_th/∂T I,
+          // entry by entry as deal.II's operators form it (I's zeros included:
+          // the same bits), without its temporaries.
+          const double          g = el.relative_modulus_derivative(T);
+          SymmetricTensor<2, 3> dtrial;
+          {
+            const double k_tr = K * tr_de, two_G = 2 * G, th = 3 * K * deth;
+            const double mean = (de[0] + de[1] + de[2]) / 3; // deviator(): trace / dim
+            double      *d    = dtrial.begin_raw();
+            for (unsigned int c = 0; c < 3; ++c)
+              d[c] = g * (k_tr * 1. + (de[c] - mean) * two_G) - th * 1.;
+            for (unsigned int c = 3; c < 6; ++c)
+              d[c] = g * (k_tr * 0. + de[c] * two_G) - th * 0.;
+          }
+          SymmetricTensor<2, 3> ds = dtrial;
+          if (dp > 0)
+            {
+              SymmetricTensor<2, 3> n_t;
+              for (unsigned int c = 0; c < 6; ++c)
+                n_t.access_raw_entry(c) = n[c];
+              // Johnson-Cook: V = σ_h C ln(ε̄̇/ε̇₀), so ∂V/∂T = (V/σ_h) ∂σ_h/∂T.
+              V.temperature_derivative =
+                model.johnson_cook_rate.active() ?
+                  (Y.stress > 0 ? V.stress / Y.stress * Y.temperature_derivative : 0.) :
+                  model.viscosity.temperature_derivative(t.rate, T, eps_c, dp, V.stress);
+              const double dG  = g * G;
+              const double dq  = std::sqrt(1.5) * (n_t * dtrial);
+              const double ddp = (dq - 3 * dG * dp - Y.temperature_derivative -
+                                  V.temperature_derivative) / (3 * G + H);
+              const SymmetricTensor<2, 3> dn = (deviator(dtrial) - (n_t * dtrial) * n_t) / norm_s;
+              ds -= std::sqrt(6.) * ((dG * dp + G * ddp) * n_t + G * dp * dn);
+            }
+          response.stress_temperature_derivative = ds;
+        }
+
+      const double dt   = inc.time_step;
+      const double work = t.work, tr_rev = t.tr_rev, rho_c = t.rho_c;
+      response.plastic_work_rate        = work / dt;
+      response.plastic_dissipation_rate = el.taylor_quinney * work / dt;
+      // Ẇthel = −3Kβ T tr(Δεᵉ)/Δt (plastic flow is isochoric), doc/thermodynamics.md.
+      response.thermoelastic_heating_rate      = -3 * K * beta * T * tr_rev / dt;
+      response.adiabatic_temperature_increment = t.adiabatic_temperature_increment;
+      if (inc.adiabatic && (request & request_tangent))
+        {
+          // Partial derivatives of ΔT_ad at fixed T: ∂q_tr/∂Δε = √6 G n,
+          // ∂q_tr/∂σ̃ₙ = √(3/2) n, ∂tr_rev/∂Δε = I.
+          SymmetricTensor<2, 3> n_t;
+          for (unsigned int c = 0; c < 6; ++c)
+            n_t.access_raw_entry(c) = n[c];
+          const double chi = el.taylor_quinney;
+          adiabatic_strain_derivative =
+            (chi * t.dwork_dq * std::sqrt(6.) * G * n_t - 3 * K * beta * T * unit_symmetric_tensor<3>()) /
+            rho_c;
+          adiabatic_stress_derivative = (chi * t.dwork_dq * std::sqrt(1.5) / rho_c) * n_t;
+          // ∂ΔT_ad/∂T at fixed Δε, σ̃ₙ (the adiabatic tangent's request has ∂/∂T,
+          // so Y and V carry theirs): K' = gK, β'(T) (eq. 19), tr_rev' = −3
+          // ∂Δε_th/∂T at constant stress, and the plastic work's, through Δε̄,
+          // q_end and, if the step began elastic, q_start = σᵥ(ε̄ₙ, T) (the
+          // softened yield stress; eq. 35 for the linear law). Here, not in the
+          // ∂σ/∂T block: the other updates pay nothing for it.
+          const double g        = el.relative_modulus_derivative(T);
+          double       dwork_dT = 0;
+          if (dp > 0)
+            {
+              // ∂q_tr/∂T = √(3/2) n : ∂σ_tr/∂T = √(3/2) 2G' n : Δεᵉ (n deviatoric).
+              double n_de = 0;
+              for (unsigned int c = 0; c < 6; ++c)
+                n_de += (c < 3 ? 1. : 2.) * n[c] * de[c];
+              const double dG       = g * G;
+              const double dq       = std::sqrt(1.5) * 2 * dG * n_de;
+              const double ddp      = (dq - 3 * dG * dp - Y.temperature_derivative -
+                                  V.temperature_derivative) / (3 * G + H);
+              const double q_end    = q_trial - 3 * G * dp;
+              const double q_start  = std::max(q_n, Y_start.stress);
+              const double dq_end   = dq - 3 * dG * dp - 3 * G * ddp;
+              const double dq_start = q_n < Y_start.stress ? Y_start.temperature_derivative : 0.;
+              dwork_dT = 0.5 * (dq_start + dq_end) * dp + 0.5 * (q_start + q_end) * ddp;
+            }
+          const double dK      = g * K;
+          const double dbeta   = el.thermal_expansion_derivative(T);
+          const double dtr_rev = el.capacity_at_constant_volume ? 0. : -3 * deth;
+          adiabatic_temperature_derivative =
+            (chi * dwork_dT - 3 * ((dK * beta + K * dbeta) * T * tr_rev + K * beta * tr_rev +
+                                   K * beta * T * dtr_rev)) /
+            rho_c;
+        }
+    }
+  } // namespace j2
+} // namespace anvil

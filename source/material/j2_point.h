@@ -1,0 +1,159 @@
+// The J2 point (seed §1.3, §2.3), private to source/material: the class
+// that the files implementing it share, one concern each —
+//   j2_plasticity.cc  the model's parameters and factory, the update and its
+//                     adiabatic fixed point, the rotation of σₙ;
+//   j2_return_map.cc  trial state, yield test, return map, ΔT_ad (evaluate());
+//   j2_finish.cc      stress, consistent and adiabatic tangents, ∂σ/∂T, heat
+//                     sources (finish()).
+// Trial carries one return map from evaluate() to finish().
+#pragma once
+
+#include <anvil/material/j2_plasticity.h>
+
+#include <cmath>
+
+namespace anvil
+{
+  namespace j2
+  {
+    using dealii::SymmetricTensor;
+    using dealii::Tensor;
+
+    class J2Point : public MaterialPoint
+    {
+    public:
+      explicit J2Point(const J2Model &model)
+        : model(model)
+      {}
+
+      void update(const MaterialIncrement &increment,
+                  const MaterialRequest    request,
+                  MaterialResponse        &response) override;
+
+      void commit() override
+      {
+        stress_n = current;
+        eps_n    = eps_c;
+        q_n      = equivalent_stress(stress_n);
+      }
+      void revert() override
+      {
+        current = stress_n;
+        eps_c   = eps_n;
+      }
+      const SymmetricTensor<2, 3> &stress() const override { return current; }
+      const SymmetricTensor<2, 3> &committed_stress() const override { return stress_n; }
+      double equivalent_plastic_strain() const override { return eps_c; }
+      double committed_equivalent_plastic_strain() const override { return eps_n; }
+      void   set_stress(const SymmetricTensor<2, 3> &s) override
+      {
+        stress_n = current = s;
+        q_n                = equivalent_stress(stress_n);
+      }
+
+      std::vector<double> save_state() const override
+      {
+        std::vector<double> state;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = i; j < 3; ++j)
+            state.push_back(stress_n[i][j]);
+        state.push_back(eps_n);
+        return state;
+      }
+      void load_state(const std::vector<double> &state) override
+      {
+        unsigned int k = 0;
+        for (unsigned int i = 0; i < 3; ++i)
+          for (unsigned int j = i; j < 3; ++j)
+            stress_n[i][j] = state.at(k++);
+        eps_n   = state.at(k);
+        current = stress_n;
+        eps_c   = eps_n;
+        q_n     = equivalent_stress(stress_n);
+      }
+
+    private:
+      /// σ̃ₙ = ΔR σₙ ΔRᵀ (raw): an update's return maps share it; and its
+      /// entries below the diagonal, (1,0), (2,0), (2,1), as computed (the
+      /// audit's mean stress symmetrises the two, last_step()).
+      struct Rotated { double trial[6], lower[3]; };
+      Rotated rotate(const Tensor<2, 3> &R) const;
+
+      /// One return map at temperature T: what finish() turns into the
+      /// response, and ΔT_ad (all the adiabatic iteration needs).
+      struct Trial
+      {
+        // (Every number is set by evaluate(), none is read before.)
+        double T, dT, K, G, eth, deth, beta;
+        double trial[6], de[6], s[6];
+        double tr_de, norm_s, q_trial, dp, H;
+        HardeningLaw::Value Y, Y_start;
+        PerzynaLaw::Value   V;
+        PerzynaLaw::Rate    rate;
+        bool                linear_return; // the closed form: Y.stress = Y_start.stress + h Δε̄
+        unsigned int        return_iterations;
+        double              work, dwork_dq, tr_rev, rho_c;
+        double              adiabatic_temperature_increment;
+      };
+      /// Trial state, yield test, return map and heat sources at (T, ΔT).
+      void evaluate(const MaterialIncrement &inc, double T, double dT, const Rotated &rotated,
+                    Trial &t) const;
+      /// Stress, state, and what @p request asks beyond it, from @p t.
+      void finish(const MaterialIncrement &inc, MaterialRequest request, Trial &t,
+                  MaterialResponse &response);
+      /// σᵥ(ε̄, T): inline where the law is linear with linear or no softening.
+      HardeningLaw::Value yield(const double eps, const double T) const
+      {
+        const J2Model::Kernel &k = model.kernel();
+        return k.inline_yield ? k.yield.evaluate(eps, T) : model.hardening->evaluate(eps, T);
+      }
+      /// σ̄ = ½(σ̃ₙ + σ) and Δε of this update (J2Model::last_step()): the
+      /// operations of the audit's mean_stress(), entry for entry.
+      void keep_for_audit(const MaterialIncrement &inc, const Rotated &rotated)
+      {
+        static constexpr unsigned int row[6] = {0, 1, 2, 0, 0, 1}, col[6] = {0, 1, 2, 1, 2, 2};
+        for (unsigned int c = 0; c < 3; ++c)
+          audit_mean[c][c] = 0.5 * (rotated.trial[c] + current[c][c]);
+        for (unsigned int c = 3; c < 6; ++c)
+          audit_mean[row[c]][col[c]] =
+            0.5 * ((rotated.trial[c] + rotated.lower[c - 3]) * 0.5 + current[row[c]][col[c]]);
+        audit_strain = inc.strain_increment;
+      }
+
+    public:
+      SymmetricTensor<2, 3> audit_mean, audit_strain; // keep_for_audit()
+
+    private:
+      static double equivalent_stress(const SymmetricTensor<2, 3> &sigma)
+      {
+        return std::sqrt(1.5) * deviator(sigma).norm();
+      }
+      /// Δε̄ solving r(Δε̄) = q_tr − 3GΔε̄ − σᵥ(ε̄ₙ + Δε̄) − V(Δε̄) = 0 (0: the root
+      /// is below working precision), with σᵥ and V at the returned Δε̄ in @p Y and
+      /// @p V. @p Y0 is σᵥ at ε̄ₙ.
+      double return_map(double                     q_tr,
+                        double                     G,
+                        double                     T,
+                        const PerzynaLaw::Rate    &rate,
+                        const HardeningLaw::Value &Y0,
+                        unsigned int              &iterations,
+                        HardeningLaw::Value       &Y,
+                        PerzynaLaw::Value         &V) const;
+
+      const J2Model        &model;
+      SymmetricTensor<2, 3> stress_n, current;
+      double                eps_n = 0, eps_c = 0;
+      double                q_n = 0; // √(3/2)|dev σₙ|, kept with σₙ (the plastic work's start)
+      // ∂ΔT_ad/∂Δε and ∂ΔT_ad/∂σ̃ₙ at fixed temperature (adiabatic tangent).
+      SymmetricTensor<2, 3> adiabatic_strain_derivative, adiabatic_stress_derivative;
+      // ∂ΔT_ad/∂T at fixed Δε and σ̃ₙ (the fixed point's ∂f/∂x).
+      double adiabatic_temperature_derivative = 0;
+      // The last ΔT_ad found: the start of the next fixed-point iteration
+      // (a start only: the converged value does not depend on it beyond the
+      // iteration's 1e-12 tolerance).
+      double adiabatic_guess = 0;
+    };
+
+    MaterialPointError no_plastic_solution(double T);
+  } // namespace j2
+} // namespace anvil
