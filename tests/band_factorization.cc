@@ -152,6 +152,30 @@ int main(int argc, char **argv)
               std::to_string(b.upper_bandwidth()) + " (< " + std::to_string(4 * w + 2) + " each)");
     }
 
+  // A weak diagonal (0.3 against off-diagonal entries up to 1): threshold
+  // pivoting keeps it where partial pivoting would exchange rows.
+  build(A, owned, grid({}), [&](unsigned int i, unsigned int j) {
+    return i == j ? (i % 2 ? 0.3 : -0.3) : random_value(i, j);
+  });
+  compare(A, band, owned, "weak diagonal");
+
+  // The ordering's estimate of the elimination's multiply-adds (from the
+  // symbolic structure: elimination tree and column counts) against the
+  // kernel's own count, on a matrix factored without exchanges (diagonal
+  // 20 against 18 entries of at most 1 a row: diagonally dominant by
+  // columns too): equal, no entry cancelling by chance.
+  build(A, owned, grid({}), [&](unsigned int i, unsigned int j) {
+    return i == j ? 20. : random_value(i, j);
+  });
+  compare(A, band, owned, "diagonally dominant");
+  if (one)
+    {
+      const auto &b = *band.band_solver();
+      check(b.estimated_multiply_adds() == b.last_multiply_adds,
+            "multiply-adds estimated " + std::to_string(b.estimated_multiply_adds()) +
+              ", counted " + std::to_string(b.last_multiply_adds) + " (equal)");
+    }
+
   // The two unknowns of a point coupled by 3, each with a zero diagonal:
   // near a block diagonal of [[0, 3], [3, 0]], well conditioned, but no
   // pivot can be taken on the diagonal.
