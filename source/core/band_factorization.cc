@@ -348,7 +348,7 @@ namespace anvil
     /// the two passes. Returns the multiply-adds, or −1 − j for a zero column j.
     ANVIL_BAND_KERNEL double eliminate(double *const band, const int n, const int lower,
                                        const int upper, const int stride, const double threshold,
-                                       int *const pivot, int *const column_end)
+                                       int *const pivot, int *const column_end, int *const reach)
     {
       const int  kv            = lower + upper;
       double     multiply_adds = 0;
@@ -361,7 +361,9 @@ namespace anvil
         {
           double *const lj = at(j, j); // lj[i] = A(j+i, j)
           int           last = 0;
-          const int     p    = choose_pivot(lj, std::min(lower, n - 1 - j), threshold, last);
+          // reach[c]: the last row column c can hold a nonzero in (its own
+          // entries', the fill's): the pivot search ends there.
+          const int     p    = choose_pivot(lj, std::min(lower, reach[j] - j), threshold, last);
           if (p < 0)
             return -1. - j;
           pivot[j]      = j + p;
@@ -369,7 +371,10 @@ namespace anvil
           ju            = std::max(ju, std::min(j + upper + p, n - 1));
           if (p != 0)
             for (int c = j; c <= ju; ++c)
-              std::swap(at(j, c)[0], at(j, c)[p]);
+              {
+                std::swap(at(j, c)[0], at(j, c)[p]);
+                reach[c] = std::max(reach[c], j + p);
+              }
           const double inverse_pivot = 1. / lj[0];
           for (int i = 1; i <= last; ++i)
             lj[i] *= inverse_pivot;
@@ -386,9 +391,10 @@ namespace anvil
               for (int i = 0; i < last; ++i)
                 l1[i] -= u * l0[i];
               multiply_adds += last;
+              reach[j + 1] = std::max(reach[j + 1], j + last);
             }
           int       last1 = 0;
-          const int p1    = choose_pivot(l1, std::min(lower, n - 2 - j), threshold, last1);
+          const int p1    = choose_pivot(l1, std::min(lower, reach[j + 1] - j - 1), threshold, last1);
           if (p1 != 0)
             {
               // An exchange (or a zero column): column j's update alone, the
@@ -403,6 +409,7 @@ namespace anvil
                   for (int i = 0; i < last; ++i)
                     cc[i] -= u * l0[i];
                   multiply_adds += last;
+                  reach[c] = std::max(reach[c], j + last);
                 }
               ++j;
               continue;
@@ -425,10 +432,14 @@ namespace anvil
                 {
                   cc[1] -= u0 * l0[0];
                   multiply_adds += last;
+                  reach[c] = std::max(reach[c], j + last);
                 }
               const double u1 = cc[1];
               if (u1 != 0.)
-                multiply_adds += last1;
+                {
+                  multiply_adds += last1;
+                  reach[c] = std::max(reach[c], j + 1 + last1);
+                }
               cc += 2;
               if (u0 != 0. && u1 != 0.)
                 {
@@ -498,8 +509,15 @@ namespace anvil
         }
     pivot.resize(n);
     column_end.resize(n);
+    std::vector<int> reach(n);
+    for (int j = 0; j < n; ++j)
+      reach[j] = j;
+    for (int row = 0; row < n; ++row)
+      for (int k = offsets[row]; k < offsets[row + 1]; ++k)
+        reach[permutation[columns[k]]] = std::max(reach[permutation[columns[k]]], permutation[row]);
     const double multiply_adds =
-      eliminate(band.data(), n, lower, upper, stride, pivot_threshold, pivot.data(), column_end.data());
+      eliminate(band.data(), n, lower, upper, stride, pivot_threshold, pivot.data(), column_end.data(),
+                reach.data());
     AssertThrow(multiply_adds >= 0,
                 ExcMessage("Band LU: the matrix is singular (column " +
                            std::to_string(inverse[static_cast<int>(-1. - multiply_adds)]) + ")"));

@@ -47,6 +47,24 @@ namespace anvil
       A.Comm().MaxAll(&largest, &global, 1);
       return global;
     }
+
+    /// n, the number of entries, then the CSR arrays (int offsets, int
+    /// columns, double values) in the machine's byte order, to
+    /// folder/matrix_<k>.bin, k counting the calls.
+    void dump_matrix(const std::string &folder, const int n, const int *offsets, const int *columns,
+                     const double *values)
+    {
+      static int  count = 0;
+      FILE *const f     = std::fopen((folder + "/matrix_" + std::to_string(count++) + ".bin").c_str(), "wb");
+      AssertThrow(f, ExcMessage("ANVIL_MATRIX_DUMP: cannot write to " + folder));
+      const int entries = offsets[n];
+      std::fwrite(&n, sizeof(int), 1, f);
+      std::fwrite(&entries, sizeof(int), 1, f);
+      std::fwrite(offsets, sizeof(int), n + 1, f);
+      std::fwrite(columns, sizeof(int), entries, f);
+      std::fwrite(values, sizeof(double), entries, f);
+      std::fclose(f);
+    }
   } // namespace
 
   /// KLU's objects and the analysed pattern: KLU reads the rows of A as the
@@ -196,18 +214,12 @@ namespace anvil
     if (A.Comm().NumProc() != 1 || A.ExtractCrsDataPointers(offsets, columns, entries) != 0)
       return false;
     const int n = A.NumMyRows();
-    if (const char *dump = std::getenv("ANVIL_MATRIX_DUMP"); dump && (&A != matrix || A.NumMyNonzeros() != nonzeros) && (&A != band_matrix || A.NumMyNonzeros() != band_nonzeros))
-      {
-        static int count = 0;
-        FILE *f = std::fopen((std::string(dump) + "/matrix_" + std::to_string(count++) + ".bin").c_str(), "wb");
-        const int nnz = offsets[n];
-        std::fwrite(&n, sizeof(int), 1, f);
-        std::fwrite(&nnz, sizeof(int), 1, f);
-        std::fwrite(offsets, sizeof(int), n + 1, f);
-        std::fwrite(columns, sizeof(int), nnz, f);
-        std::fwrite(entries, sizeof(double), nnz, f);
-        std::fclose(f);
-      }
+    // Diagnostics: ANVIL_MATRIX_DUMP=folder writes each new pattern's matrix
+    // (doc/linear_solver.md, "Band LU", session 13).
+    if (const char *folder = std::getenv("ANVIL_MATRIX_DUMP"))
+      if ((&A != matrix || A.NumMyNonzeros() != nonzeros) &&
+          (&A != band_matrix || A.NumMyNonzeros() != band_nonzeros))
+        dump_matrix(folder, n, offsets, columns, entries);
     if (choose_band(A, n, offsets, columns))
       {
         band->factorize(offsets, columns, entries);
