@@ -93,67 +93,6 @@ namespace anvil
         }
     }
 
-    /// The multiply-adds of the elimination without exchanges in the
-    /// numbering @p inverse (old node of new index k; @p position its
-    /// inverse) of the symmetric graph: L's column j holds A's rows below j
-    /// and its children's in the elimination tree (Liu's algorithm), and the
-    /// band kernel runs each multiplier column to its last row once for
-    /// each nonzero of U's row j (as many, the pattern being symmetric).
-    /// It tells the numberings apart where the envelope does not (the
-    /// envelope counts the zeros the kernel skips).
-    double elimination_work(const std::vector<int> &start, const std::vector<int> &adjacent,
-                            const std::vector<int> &inverse, const std::vector<int> &position)
-    {
-      const int        n = inverse.size();
-      std::vector<int> parent(n, -1), ancestor(n, -1);
-      for (int j = 0; j < n; ++j)
-        for (int k = start[inverse[j]]; k < start[inverse[j] + 1]; ++k)
-          for (int r = position[adjacent[k]]; r < j;)
-            {
-              const int next = ancestor[r];
-              ancestor[r]    = j;
-              if (next == -1)
-                parent[r] = j;
-              if (next == -1 || next == j)
-                break;
-              r = next;
-            }
-      // Columns' rows, children merged into parents (the rows of a column
-      // are kept until its parent has taken them).
-      std::vector<std::vector<int>> rows(n);
-      std::vector<int>              mark(n, -1);
-      double                        work = 0;
-      for (int j = 0; j < n; ++j)
-        {
-          std::vector<int> column; // the children's rows (taken below), once each
-          mark[j] = j;
-          for (const int i : rows[j])
-            if (mark[i] != j)
-              {
-                mark[i] = j;
-                column.push_back(i);
-              }
-          std::vector<int>().swap(rows[j]);
-          for (int k = start[inverse[j]]; k < start[inverse[j] + 1]; ++k)
-            if (const int i = position[adjacent[k]]; i > j && mark[i] != j)
-              {
-                mark[i] = j;
-                column.push_back(i);
-              }
-          int last = j;
-          for (const int i : column)
-            last = std::max(last, i);
-          work += double(column.size()) * (last - j);
-          if (parent[j] >= 0)
-            {
-              std::vector<int> &up = rows[parent[j]];
-              for (const int i : column)
-                if (i != parent[j])
-                  up.push_back(i);
-            }
-        }
-      return work;
-    }
   } // namespace
 
   void BandFactorization::order(const int *offsets, const int *columns)
@@ -165,7 +104,7 @@ namespace anvil
     // Cuthill–McKee per connected component, from a pseudo-peripheral node
     // (George & Liu: restart from the last level's node of least degree
     // while the depth grows), neighbours taken by increasing degree.
-    std::vector<int> visited(n, -1), queue, cm, neighbours, roots, ends;
+    std::vector<int> visited(n, -1), queue, cm, neighbours;
     std::vector<char> placed(n, 0);
     cm.reserve(n);
     int mark = 0;
@@ -187,42 +126,9 @@ namespace anvil
             depth = d;
             root  = candidate;
           }
-        levels(root, start, adjacent, visited, mark++, queue, last_start);
-        int end = queue[last_start];
-        for (int q = last_start; q < static_cast<int>(queue.size()); ++q)
-          if (degree(queue[q]) < degree(end))
-            end = queue[q];
-        roots.push_back(root);
-        ends.push_back(end);
         cuthill_mckee(root, start, adjacent, placed, neighbours, cm);
       }
-    // Both ends of the pseudo-diameters: which makes the cheaper
-    // elimination depends on where the graph is wide (two_blocks: the upper
-    // block near one end of the lower one; the tube's folds), so both are
-    // numbered and the cheaper kept.
-    std::vector<int> position(n), best;
-    double           least = -1;
-    for (const auto *from : {&roots, &ends})
-      {
-        if (from == &ends)
-          {
-            std::fill(placed.begin(), placed.end(), 0);
-            cm.clear();
-            for (const int r : ends)
-              cuthill_mckee(r, start, adjacent, placed, neighbours, cm);
-          }
-        std::reverse(cm.begin(), cm.end());
-        for (int k = 0; k < n; ++k)
-          position[cm[k]] = k;
-        const double work = elimination_work(start, adjacent, cm, position);
-        if (least < 0 || work < least)
-          {
-            least = work;
-            best.swap(cm);
-          }
-      }
-    elimination_multiply_adds = least;
-    inverse.swap(best);
+    inverse.assign(cm.rbegin(), cm.rend());
     permutation.resize(n);
     for (int k = 0; k < n; ++k)
       permutation[inverse[k]] = k;

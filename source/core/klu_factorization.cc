@@ -164,7 +164,9 @@ namespace anvil
     // when the band's work has moved by half since: contact couplings (the
     // tube's folds) raise both, KLU's by less (2.3 → 6.2 M flops on the
     // tube, the band's 0.74 → 8 M multiply-adds).
-    const double band_work = band->estimated_multiply_adds();
+    // The envelope's flops / 2: the multiply-adds without exchanges if no
+    // entry in it stayed zero (1.0–1.7 × the kernel's count: the tube, two_blocks).
+    const double band_work = band->estimated_flops() / 2;
     if (klu_estimated_flops < 0 || band_work > 1.5 * direct->band_work_at_estimate ||
         band_work < direct->band_work_at_estimate / 1.5)
       {

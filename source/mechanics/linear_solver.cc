@@ -239,7 +239,7 @@ namespace anvil
             if (band)
               std::cout << " (band LU: " << band->size() << " unknowns, bandwidths "
                         << band->lower_bandwidth() << " + " << band->upper_bandwidth() << ", "
-                        << band->estimated_multiply_adds() << " multiply-adds estimated, ordering "
+                        << band->estimated_flops() << " flops on the envelope, ordering "
                         << band->orderings << "; KLU's estimate " << direct_solver.klu_estimated_flops
                         << " flops)";
             std::cout << std::endl;

@@ -29,8 +29,12 @@ namespace anvil
     /// within this factor of those the ordering was made with.
     double kept_growth = 1.25;
     /// The diagonal stays the pivot while |a_jj| ≥ pivot_threshold ·
-    /// max_i |a_ij| (1: partial pivoting, LAPACK's choice).
-    double pivot_threshold = 0.1;
+    /// max_i |a_ij|. 1 (partial pivoting, LAPACK's choice): 0.1 changes
+    /// the tube's and two_blocks' work by < 1 % (they rarely exchange rows)
+    /// and saves 19 % on quarter_cylinder_forming, whose penalty contact
+    /// makes K so ill-conditioned (κ ε ≈ 4e-6) that another pivot sequence
+    /// moves its Newton path by 1e-5 (doc/linear_solver.md).
+    double pivot_threshold = 1;
     /// Factor the values of the pattern given to the last analyze().
     void factorize(const int *offsets, const int *columns, const double *values);
     /// x = A⁻¹ b; x and b may be the same array.
@@ -44,10 +48,6 @@ namespace anvil
     /// extent after fill): what the zero-skipping elimination costs when no
     /// row is exchanged; pivoting adds to it, bounded by the band.
     double estimated_flops() const { return envelope_flops; }
-    /// The multiply-adds of the elimination without exchanges in the
-    /// ordering's numbering (its symbolic structure: the work the kernel
-    /// does on a pattern the ordering was made for).
-    double estimated_multiply_adds() const { return elimination_multiply_adds; }
     /// Multiply-adds of the last factorisation (×2 for flops).
     double last_multiply_adds = 0;
     unsigned long orderings = 0, factorizations = 0;
@@ -64,6 +64,6 @@ namespace anvil
     std::vector<double> band;        // column-major, stride 2·lower + upper + 1
     std::vector<int>    pivot;       // row exchanged with row j at step j
     std::vector<int>    column_end;  // last nonzero row of L's column j, minus j
-    double              envelope_flops = 0, elimination_multiply_adds = 0;
+    double              envelope_flops = 0;
   };
 } // namespace anvil
