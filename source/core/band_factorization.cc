@@ -68,31 +68,6 @@ namespace anvil
         }
       return depth;
     }
-
-    /// Cuthill–McKee from @p root over the unplaced nodes of its component,
-    /// neighbours by increasing degree, appended to @p cm (placed marked).
-    void cuthill_mckee(const int root, const std::vector<int> &start, const std::vector<int> &adjacent,
-                       std::vector<char> &placed, std::vector<int> &neighbours, std::vector<int> &cm)
-    {
-      const auto        degree = [&](const int i) { return start[i + 1] - start[i]; };
-      const std::size_t first  = cm.size();
-      cm.push_back(root);
-      placed[root] = 1;
-      for (std::size_t q = first; q < cm.size(); ++q)
-        {
-          neighbours.clear();
-          for (int k = start[cm[q]]; k < start[cm[q] + 1]; ++k)
-            if (!placed[adjacent[k]])
-              {
-                placed[adjacent[k]] = 1;
-                neighbours.push_back(adjacent[k]);
-              }
-          std::stable_sort(neighbours.begin(), neighbours.end(),
-                           [&](int a, int b) { return degree(a) < degree(b); });
-          cm.insert(cm.end(), neighbours.begin(), neighbours.end());
-        }
-    }
-
   } // namespace
 
   void BandFactorization::order(const int *offsets, const int *columns)
@@ -126,7 +101,22 @@ namespace anvil
             depth = d;
             root  = candidate;
           }
-        cuthill_mckee(root, start, adjacent, placed, neighbours, cm);
+        const std::size_t first = cm.size();
+        cm.push_back(root);
+        placed[root] = 1;
+        for (std::size_t q = first; q < cm.size(); ++q)
+          {
+            neighbours.clear();
+            for (int k = start[cm[q]]; k < start[cm[q] + 1]; ++k)
+              if (!placed[adjacent[k]])
+                {
+                  placed[adjacent[k]] = 1;
+                  neighbours.push_back(adjacent[k]);
+                }
+            std::stable_sort(neighbours.begin(), neighbours.end(),
+                             [&](int a, int b) { return degree(a) < degree(b); });
+            cm.insert(cm.end(), neighbours.begin(), neighbours.end());
+          }
       }
     inverse.assign(cm.rbegin(), cm.rend());
     permutation.resize(n);
@@ -215,62 +205,35 @@ namespace anvil
   __attribute__((target_clones("avx2", "default"),                                                 \
                  optimize("tree-loop-vectorize", "vect-cost-model=dynamic")))
 
-    /// Column j's pivot (threshold pivoting: the diagonal while it is within
-    /// @p threshold of the column's largest; an exchange brings a row from
-    /// below into U and widens it beyond the envelope), returned as the
-    /// offset p ≥ 0 below j, −1 for a zero column; @p last: the column's
-    /// last nonzero below j (its multipliers' length).
-    __attribute__((always_inline)) inline int
-    choose_pivot(const double *const lj, const int km, const double threshold, int &last)
-    {
-      int    p       = 0;
-      double largest = std::abs(lj[0]);
-      last           = 0;
-      for (int i = 1; i <= km; ++i)
-        if (lj[i] != 0.)
-          {
-            last = i;
-            if (std::abs(lj[i]) > largest)
-              {
-                largest = std::abs(lj[i]);
-                p       = i;
-              }
-          }
-      if (!(largest > 0.))
-        return -1;
-      if (p != 0 && std::abs(lj[0]) >= threshold * largest)
-        p = 0;
-      return p;
-    }
-
     /// dgbtf2 on the band (column-major, @p stride, A(i, j) at
     /// band[j stride + kv + i − j]): column j's pivot among its lower rows,
     /// the exchange over the columns the rows reach (ju), the multipliers,
-    /// the update, skipping zero multipliers' tails and zero entries of U's
-    /// row. Columns go in pairs where column j + 1 keeps its diagonal: the
-    /// update of a column c by j and j + 1 is one pass over c (a rank-2
-    /// update: half the loads, stores and per-column overhead of two rank-1
-    /// passes, which dominate at bandwidths 27–70), each entry rounded as in
-    /// the two passes. Returns the multiply-adds, or −1 − j for a zero column j.
+    /// the rank-1 update, skipping zero multipliers' tails and zero entries
+    /// of U's row. Returns the multiply-adds, or −1 − j for a zero column j.
     ANVIL_BAND_KERNEL double eliminate(double *const band, const int n, const int lower,
-                                       const int upper, const int stride, const double threshold,
-                                       int *const pivot, int *const column_end, int *const reach)
+                                       const int upper, const int stride, int *const pivot,
+                                       int *const column_end)
     {
-      const int  kv            = lower + upper;
-      double     multiply_adds = 0;
-      int        ju            = 0;
-      const auto at            = [&](const int i, const int c) {
-        return band + static_cast<std::size_t>(c) * stride + kv + i - c; // &A(i, c)
-      };
-      int j = 0;
-      while (j < n)
+      const int kv            = lower + upper;
+      double    multiply_adds = 0;
+      int       ju            = 0;
+      for (int j = 0; j < n; ++j)
         {
-          double *const lj = at(j, j); // lj[i] = A(j+i, j)
-          int           last = 0;
-          // reach[c]: the last row column c can hold a nonzero in (its own
-          // entries', the fill's): the pivot search ends there.
-          const int     p    = choose_pivot(lj, std::min(lower, reach[j] - j), threshold, last);
-          if (p < 0)
+          double *const lj = band + static_cast<std::size_t>(j) * stride + kv; // lj[i] = A(j+i, j)
+          const int     km = std::min(lower, n - 1 - j);
+          int           p = 0, last = 0;
+          double        largest = std::abs(lj[0]);
+          for (int i = 1; i <= km; ++i)
+            if (lj[i] != 0.)
+              {
+                last = i;
+                if (std::abs(lj[i]) > largest)
+                  {
+                    largest = std::abs(lj[i]);
+                    p       = i;
+                  }
+              }
+          if (!(largest > 0.))
             return -1. - j;
           pivot[j]      = j + p;
           column_end[j] = last;
@@ -278,92 +241,26 @@ namespace anvil
           if (p != 0)
             for (int c = j; c <= ju; ++c)
               {
-                std::swap(at(j, c)[0], at(j, c)[p]);
-                reach[c] = std::max(reach[c], j + p);
+                double *const cc = band + static_cast<std::size_t>(c) * stride + kv + j - c;
+                std::swap(cc[0], cc[p]);
               }
           const double inverse_pivot = 1. / lj[0];
           for (int i = 1; i <= last; ++i)
             lj[i] *= inverse_pivot;
-          if (last == 0 || j + 1 == n)
+          if (last == 0)
+            continue;
+          const double *__restrict l = lj + 1;
+          for (int c = j + 1; c <= ju; ++c)
             {
-              ++j;
-              continue;
-            }
-          // Column j + 1 by column j; its pivot decides the pairing.
-          const double *__restrict l0 = lj + 1; // rows j+1 ..
-          double *const            l1 = at(j + 1, j + 1);
-          if (const double u = l1[-1]; u != 0.)
-            {
+              double *__restrict cc = band + static_cast<std::size_t>(c) * stride + kv + j - c;
+              const double u        = cc[0];
+              if (u == 0.)
+                continue;
+              ++cc;
               for (int i = 0; i < last; ++i)
-                l1[i] -= u * l0[i];
+                cc[i] -= u * l[i];
               multiply_adds += last;
-              reach[j + 1] = std::max(reach[j + 1], j + last);
             }
-          int       last1 = 0;
-          const int p1    = choose_pivot(l1, std::min(lower, reach[j + 1] - j - 1), threshold, last1);
-          if (p1 != 0)
-            {
-              // An exchange (or a zero column): column j's update alone, the
-              // next step takes column j + 1 up.
-              for (int c = j + 2; c <= ju; ++c)
-                {
-                  double *__restrict cc = at(j, c);
-                  const double u        = cc[0];
-                  if (u == 0.)
-                    continue;
-                  ++cc;
-                  for (int i = 0; i < last; ++i)
-                    cc[i] -= u * l0[i];
-                  multiply_adds += last;
-                  reach[c] = std::max(reach[c], j + last);
-                }
-              ++j;
-              continue;
-            }
-          pivot[j + 1]      = j + 1;
-          column_end[j + 1] = last1;
-          ju                = std::max(ju, std::min(j + 1 + upper, n - 1));
-          const double inverse_pivot1 = 1. / l1[0];
-          for (int i = 1; i <= last1; ++i)
-            l1[i] *= inverse_pivot1;
-          // Columns j + 2 .. ju by both: rows j+2 .. j+last by column j,
-          // rows j+2 .. j+1+last1 by column j + 1.
-          const double *__restrict a = l0 + 1, *__restrict b = l1 + 1;
-          const int both = std::min(last - 1, last1);
-          for (int c = j + 2; c <= ju; ++c)
-            {
-              double *__restrict cc = at(j, c);
-              const double u0       = cc[0];
-              if (u0 != 0.)
-                {
-                  cc[1] -= u0 * l0[0];
-                  multiply_adds += last;
-                  reach[c] = std::max(reach[c], j + last);
-                }
-              const double u1 = cc[1];
-              if (u1 != 0.)
-                {
-                  multiply_adds += last1;
-                  reach[c] = std::max(reach[c], j + 1 + last1);
-                }
-              cc += 2;
-              if (u0 != 0. && u1 != 0.)
-                {
-                  for (int i = 0; i < both; ++i)
-                    cc[i] = (cc[i] - u0 * a[i]) - u1 * b[i];
-                  for (int i = both; i < last - 1; ++i)
-                    cc[i] -= u0 * a[i];
-                  for (int i = both; i < last1; ++i)
-                    cc[i] -= u1 * b[i];
-                }
-              else if (u0 != 0.)
-                for (int i = 0; i < last - 1; ++i)
-                  cc[i] -= u0 * a[i];
-              else if (u1 != 0.)
-                for (int i = 0; i < last1; ++i)
-                  cc[i] -= u1 * b[i];
-            }
-          j += 2;
         }
       return multiply_adds;
     }
@@ -415,15 +312,8 @@ namespace anvil
         }
     pivot.resize(n);
     column_end.resize(n);
-    std::vector<int> reach(n);
-    for (int j = 0; j < n; ++j)
-      reach[j] = j;
-    for (int row = 0; row < n; ++row)
-      for (int k = offsets[row]; k < offsets[row + 1]; ++k)
-        reach[permutation[columns[k]]] = std::max(reach[permutation[columns[k]]], permutation[row]);
     const double multiply_adds =
-      eliminate(band.data(), n, lower, upper, stride, pivot_threshold, pivot.data(), column_end.data(),
-                reach.data());
+      eliminate(band.data(), n, lower, upper, stride, pivot.data(), column_end.data());
     AssertThrow(multiply_adds >= 0,
                 ExcMessage("Band LU: the matrix is singular (column " +
                            std::to_string(inverse[static_cast<int>(-1. - multiply_adds)]) + ")"));

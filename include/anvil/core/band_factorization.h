@@ -28,13 +28,6 @@ namespace anvil
     /// A pattern outside the band keeps the ordering if its band widths are
     /// within this factor of those the ordering was made with.
     double kept_growth = 1.25;
-    /// The diagonal stays the pivot while |a_jj| ≥ pivot_threshold ·
-    /// max_i |a_ij|. 1 (partial pivoting, LAPACK's choice): 0.1 changes
-    /// the tube's and two_blocks' work by < 1 % (they rarely exchange rows)
-    /// and saves 19 % on quarter_cylinder_forming, whose penalty contact
-    /// makes K so ill-conditioned (κ ε ≈ 4e-6) that another pivot sequence
-    /// moves its Newton path by 1e-5 (doc/linear_solver.md).
-    double pivot_threshold = 1;
     /// Factor the values of the pattern given to the last analyze().
     void factorize(const int *offsets, const int *columns, const double *values);
     /// x = A⁻¹ b; x and b may be the same array.
