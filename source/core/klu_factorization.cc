@@ -16,6 +16,7 @@
 #include <anvil/core/klu_factorization.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <cmath>
@@ -46,6 +47,24 @@ namespace anvil
       A.Comm().MaxAll(&largest, &global, 1);
       return global;
     }
+
+    /// n, the number of entries, then the CSR arrays (int offsets, int
+    /// columns, double values) in the machine's byte order, to
+    /// folder/matrix_<k>.bin, k counting the calls.
+    void dump_matrix(const std::string &folder, const int n, const int *offsets, const int *columns,
+                     const double *values)
+    {
+      static int  count = 0;
+      FILE *const f     = std::fopen((folder + "/matrix_" + std::to_string(count++) + ".bin").c_str(), "wb");
+      AssertThrow(f, ExcMessage("ANVIL_MATRIX_DUMP: cannot write to " + folder));
+      const int entries = offsets[n];
+      std::fwrite(&n, sizeof(int), 1, f);
+      std::fwrite(&entries, sizeof(int), 1, f);
+      std::fwrite(offsets, sizeof(int), n + 1, f);
+      std::fwrite(columns, sizeof(int), entries, f);
+      std::fwrite(values, sizeof(double), entries, f);
+      std::fclose(f);
+    }
   } // namespace
 
   /// KLU's objects and the analysed pattern: KLU reads the rows of A as the
@@ -74,6 +93,8 @@ namespace anvil
     /// L's and U's entries estimated by the analysis made for the choice
     /// of the band (choose_band), −1 before.
     double estimated_entries = -1;
+    /// The band's estimated multiply-adds when KLU's estimate was made.
+    double band_work_at_estimate = -1;
   };
 
   namespace
@@ -139,28 +160,40 @@ namespace anvil
     if (!reordered)
       return band_chosen;
     const double band_entries = double(n) * (2 * band->lower_bandwidth() + band->upper_bandwidth() + 1);
-    if (klu_estimated_flops < 0)
+    // KLU's estimate from an analysis alone (AMD's flop count), made anew
+    // when the band's work has moved by half since: contact couplings (the
+    // tube's folds) raise both, KLU's by less (2.3 → 6.2 M flops on the
+    // tube, the band's 0.74 → 8 M multiply-adds).
+    // The envelope's flops / 2: the multiply-adds without exchanges if no
+    // entry in it stayed zero (1.0–1.7 × the kernel's count: the tube, two_blocks).
+    const double band_work = band->estimated_flops() / 2;
+    if (klu_estimated_flops < 0 || band_work > 1.5 * direct->band_work_at_estimate ||
+        band_work < direct->band_work_at_estimate / 1.5)
       {
-        // KLU's estimate from an analysis alone (AMD's flop count), made
-        // once: later patterns differ by a few contact couplings.
         trilinos_klu_common common;
         trilinos_klu_defaults(&common);
         trilinos_klu_symbolic *symbolic =
           trilinos_klu_analyze(n, const_cast<int *>(offsets), const_cast<int *>(columns), &common);
         if (!symbolic)
           return band_chosen = false;
-        klu_estimated_flops   = symbolic->est_flops;
+        klu_estimated_flops       = symbolic->est_flops;
         direct->estimated_entries = symbolic->lnz + symbolic->unz;
+        direct->band_work_at_estimate = band_work;
         trilinos_klu_free_symbolic(&symbolic, &common);
       }
-    // The band if its envelope's flops, weighted by what a flop costs in
-    // each, are fewer, and its storage is within a few times KLU's factors
-    // (or small anyway: 8 MB).
-    // Instructions per flop (callgrind, two_blocks and the tube): KLU 7–10
-    // (refactor, factor), the band's elimination ~1.
-    constexpr double klu_instructions_per_flop = 7, band_instructions_per_flop = 1;
-    band_chosen = band->estimated_flops() * band_instructions_per_flop <
-                    klu_estimated_flops * klu_instructions_per_flop &&
+    // The band if its instructions are fewer, and its storage is within a
+    // few times KLU's factors (or small anyway: 8 M entries). Instructions
+    // per factorisation and solve (callgrind on the tube unfolded and
+    // folded and on two_blocks, doc/linear_solver.md): KLU's refactorisation
+    // 5.5 per estimated flop (with pivoting ~10); the band ~2.5 per
+    // multiply-add and ~6 per band entry (pivot search, scatter, solve),
+    // more on narrow bands (per-column overhead), where it wins anyway.
+    constexpr double klu_instructions_per_flop = 5.5, band_instructions_per_multiply_add = 2.5,
+                     band_instructions_per_entry = 6;
+    const double band_instructions =
+      band_work * band_instructions_per_multiply_add +
+      double(n) * (band->lower_bandwidth() + band->upper_bandwidth()) * band_instructions_per_entry;
+    band_chosen = band_instructions < klu_estimated_flops * klu_instructions_per_flop &&
                   (band_entries <= 4 * direct->estimated_entries || band_entries <= (1 << 20));
     return band_chosen;
   }
@@ -183,6 +216,12 @@ namespace anvil
     if (A.Comm().NumProc() != 1 || A.ExtractCrsDataPointers(offsets, columns, entries) != 0)
       return false;
     const int n = A.NumMyRows();
+    // Diagnostics: ANVIL_MATRIX_DUMP=folder writes each new pattern's matrix
+    // (doc/linear_solver.md, "Band LU", session 13).
+    if (const char *folder = std::getenv("ANVIL_MATRIX_DUMP"))
+      if ((&A != matrix || A.NumMyNonzeros() != nonzeros) &&
+          (&A != band_matrix || A.NumMyNonzeros() != band_nonzeros))
+        dump_matrix(folder, n, offsets, columns, entries);
     if (choose_band(A, n, offsets, columns))
       {
         band->factorize(offsets, columns, entries);
