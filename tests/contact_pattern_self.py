@@ -5,12 +5,13 @@ issues 12 and 15): the tube's folds (prm/tube_impact.prm, case 3) to
 Independent answers:
 - the count: with only the step's candidates (Pattern look-ahead = 0) the
   pattern grows whenever a fold's skin comes within the step's search margin
-  (1.5 faces) of the skin across it; a fold closes at ~0.1 mm per step
-  (the crush at 0.23 mm per step, shared by the fold's two halves) and
-  brings new faces within the margin at almost every step once folds form.
-  Looking 10 steps ahead along each (node, face)'s own relative motion, plus
-  one face of normal margin, a fold's couplings enter the pattern ~10 steps
-  before they are needed: at most a quarter as many patterns;
+  (1.5 faces) of the skin across it, or the crush shortens the skin's own
+  elements enough to bring a face of rings 3-4 within it: once the folds
+  form, at almost every step (main: 58 patterns in 83 steps). A fold closes
+  over many steps (the crush moves the top by 0.23 mm a step, a face is
+  0.5 mm), so a look-ahead of 10 steps along each (node, face)'s own
+  relative motion sees a coupling ~10 steps before it is needed: at most a
+  quarter as many patterns;
 - the answers: the extra couplings are zero entries, so no number in the
   matrix changes; only the LU's pivot order moves round-off: the reaction
   and energy histories and the quantities of interest agree to 1e-8 of their
