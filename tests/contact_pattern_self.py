@@ -1,13 +1,13 @@
 """The matrix pattern of a self-contact pair (doc/contact.md, "Pattern";
 issues 12 and 15): the tube's folds (prm/tube_impact.prm, case 3) to
-1.2 ms, where three folds have closed onto the skin.
+1.2 ms, past the first folds closing onto the skin.
 
 Independent answers:
 - the count: with only the step's candidates (Pattern look-ahead = 0) the
   pattern grows whenever a fold's skin comes within the step's search margin
   (1.5 faces) of the skin across it, or the crush shortens the skin's own
   elements enough to bring a face of rings 3-4 within it: once the folds
-  form, at almost every step (main: 58 patterns in 83 steps). A fold closes
+  form, at most steps (measured: 58 patterns in 83 steps). A fold closes
   over many steps (the crush moves the top by 0.23 mm a step, a face is
   0.5 mm), so a look-ahead of 10 steps along each (node, face)'s own
   relative motion sees a coupling ~10 steps before it is needed: at most a
