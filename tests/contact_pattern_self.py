@@ -23,6 +23,7 @@ from anvil_test import run, check, finish, largest_column_difference
 runs = {}
 for look_ahead in (0, 10):
     out, s, _ = run("prm/tube_impact.prm", ["Contact/Pattern look-ahead=%g" % look_ahead,
+                                            "Contact/Self-contact pattern margin=0.5",
                                             "Time/End time=1.2e-3"],
                     name="contact_pattern_self_%g" % look_ahead)
     runs[look_ahead] = (out, s)

@@ -140,7 +140,7 @@ namespace anvil
             }
           const auto tree = pack_rtree(boxes);
           std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
-          if (pairs[p].self)
+          if (pairs[p].self && self_margin_faces >= 0)
             {
               self_look_ahead(p, side, tree, drift, wide);
               continue;
@@ -169,7 +169,8 @@ namespace anvil
               hits.clear();
               tree.query(bgi::intersects(path), std::back_inserter(hits));
               for (const auto &h : hits)
-                wide.push_back({{p, pass, n, h.second}});
+                if (!pairs[p].self || !neighbourhood[p].always_excluded(n, h.second))
+                  wide.push_back({{p, pass, n, h.second}});
             }
         }
     std::sort(wide.begin(), wide.end());
