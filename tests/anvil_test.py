@@ -122,3 +122,30 @@ def finish():
         print("%d check(s) failed" % len(failures))
         sys.exit(1)
     print("all checks passed")
+
+
+def largest_column_difference(out_a, out_b, names, summary_a=None, summary_b=None):
+    """The largest difference between two runs' CSV columns (files @p names in
+    the output directories), each relative to its column's scale floored at
+    1e-6 of its file's largest value (balance errors are round-off), and
+    between their summaries' quantities of interest if given; returns
+    (difference, "file column")."""
+    def columns(path):
+        with open(path) as f:
+            rows = list(csv.reader(f))
+        return {h.split(" [")[0]: [float(r[i]) for r in rows[1:]] for i, h in enumerate(rows[0])}
+    worst, where = 0.0, ""
+    for name in names:
+        a, b = columns(os.path.join(out_a, name)), columns(os.path.join(out_b, name))
+        largest = max(abs(v) for c in a.values() for v in c)
+        for key, values in a.items():
+            scale = max([abs(v) for v in values] + [1e-6 * largest])
+            for x, y in zip(values, b[key]):
+                d = abs(x - y) / scale
+                if d > worst:
+                    worst, where = d, "%s %s" % (name, key)
+    for key, v in (summary_a or {}).get("quantities_of_interest", {}).items():
+        d = abs(v - summary_b["quantities_of_interest"][key]) / max(abs(v), 1e-300)
+        if d > worst:
+            worst, where = d, "quantity " + key
+    return worst, where

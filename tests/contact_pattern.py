@@ -17,15 +17,7 @@ Independent answers:
   to 1e-9 of their scale (at least 1e-6 of the file's largest value: the
   balance errors are round-off), and the Newton iterations are equal.
 """
-import csv
-import os
-from anvil_test import run, check, finish
-
-
-def columns(path):
-    with open(path) as f:
-        rows = list(csv.reader(f))
-    return {h.split(" [")[0]: [float(r[i]) for r in rows[1:]] for i, h in enumerate(rows[0])}
+from anvil_test import run, check, finish, largest_column_difference
 
 
 runs = {}
@@ -47,22 +39,7 @@ check(s0["newton_iterations"] == s10["newton_iterations"] and s0["steps"] == s10
       "the same steps and Newton iterations (%d / %d, %d / %d)"
       % (s0["steps"], s10["steps"], s0["newton_iterations"], s10["newton_iterations"]))
 
-worst, where = 0.0, ""
-for name in ("contact.csv", "newton.csv", "energy.csv"):
-    a, b = columns(os.path.join(out0, name)), columns(os.path.join(out10, name))
-    # A column's scale, floored at 1e-6 of the file's largest (the balance
-    # errors and the F-bar work are round-off: ~1e-15 N mm).
-    largest = max(abs(v) for c in a.values() for v in c)
-    for key, values in a.items():
-        scale = max([abs(v) for v in values] + [1e-6 * largest])
-        for x, y in zip(values, b[key]):
-            d = abs(x - y) / scale
-            if d > worst:
-                worst, where = d, "%s %s" % (name, key)
-for key, v in s0["quantities_of_interest"].items():
-    d = abs(v - s10["quantities_of_interest"][key]) / max(abs(v), 1e-300)
-    if d > worst:
-        worst, where = d, "quantity " + key
+worst, where = largest_column_difference(out0, out10, ("contact.csv", "newton.csv", "energy.csv"), s0, s10)
 print("  largest difference, relative to its column's scale: %.2e (%s)" % (worst, where))
 check(worst < 1e-9, "the answers do not depend on the pattern (%.2e < 1e-9)" % worst)
 finish()

@@ -366,14 +366,24 @@ namespace anvil
     double penetration = 0;
     // The step's candidate lists (margin 1.5 faces at t_n) hold every face
     // this search (margin 0.5 at x) finds while no surface node has moved by
-    // 0.5 of the largest face in a coordinate: a face's box moved by at most
-    // δ, the node by δ, so the node lies within 0.5 + 2δ ≤ 1.5 of the old
-    // box. Filtered by the search's own test they are its candidates, bit for
-    // bit, without an R-tree query per node (0.4: clear of round-off).
-    bool   near_start  = x_old.size() == x.size();
-    for (unsigned int n = 0; near_start && n < x.size(); ++n)
-      for (unsigned int d = 0; d < dim; ++d)
-        near_start = near_start && std::abs(x[n][d] - x_old[n][d]) < 0.4 * largest_face;
+    // 0.5 of the largest face in a coordinate relative to a common
+    // translation τ (the midrange of the nodes' motion: a tube crushed onto
+    // its base moves as a whole at the top): a face's box moved by τ and at
+    // most δ more, the node by τ + δ, so the node lies within 0.5 + 2δ ≤ 1.5
+    // of the old box moved by τ, i.e. the old node of the old box. Filtered
+    // by the search's own test they are its candidates, bit for bit, without
+    // an R-tree query per node (0.4: clear of round-off).
+    bool near_start = x_old.size() == x.size();
+    for (unsigned int d = 0; near_start && d < dim; ++d)
+      {
+        double lo = std::numeric_limits<double>::max(), hi = -lo;
+        for (unsigned int n = 0; n < x.size(); ++n)
+          {
+            lo = std::min(lo, x[n][d] - x_old[n][d]);
+            hi = std::max(hi, x[n][d] - x_old[n][d]);
+          }
+        near_start = x.empty() || hi - lo < 0.8 * largest_face;
+      }
     auto  &dofs       = scratch_dofs;
     auto  &beyond_end = scratch_beyond_end; // (face, its end)
     for (unsigned int p = 0; p < pairs.size(); ++p)

@@ -79,7 +79,7 @@ namespace anvil
               {
                 const unsigned int n = side.mine[k], f = side.candidates.faces[i];
                 if (!pairs[p].self || !neighbourhood[p].always_excluded(n, f))
-                  step_allowed.push_back({p, pass, n, f}); // in order: (p, pass, n) ascending, f sorted
+                  step_allowed.push_back({{p, pass, n, f}}); // in order: (p, pass, n) ascending, f sorted
               }
         }
     // Within a step the pattern only grows (a new coupling found in Newton
@@ -91,8 +91,23 @@ namespace anvil
       std::includes(allowed.begin(), allowed.end(), step_allowed.begin(), step_allowed.end());
     if (!covered || allowed.size() > 4 * step_allowed.size() + 64)
       {
-        allowed = look_ahead_couplings();
-        grew    = true;
+        // Grown, the pattern keeps what it had (the couplings of a fold that
+        // opened a little come back: no new pattern for them) unless stale
+        // couplings are most of it; pruned, it is the look-ahead's alone.
+        std::vector<Coupling> fresh = look_ahead_couplings(), merged;
+        std::set_union(allowed.begin(), allowed.end(), fresh.begin(), fresh.end(),
+                       std::back_inserter(merged));
+        const bool stale = merged.size() > 2 * fresh.size() + 64;
+        if (stale)
+          {
+            allowed.swap(fresh);
+            grew = true;
+          }
+        else if (!covered)
+          {
+            allowed.swap(merged);
+            grew = true;
+          }
       }
   }
 
@@ -125,6 +140,11 @@ namespace anvil
             }
           const auto tree = pack_rtree(boxes);
           std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
+          if (pairs[p].self && self_margin_faces >= 0)
+            {
+              self_look_ahead(p, side, tree, drift, wide);
+              continue;
+            }
           for (unsigned int k = 0; k < side.mine.size(); ++k)
             {
               const unsigned int n = side.mine[k];
@@ -150,12 +170,82 @@ namespace anvil
               tree.query(bgi::intersects(path), std::back_inserter(hits));
               for (const auto &h : hits)
                 if (!pairs[p].self || !neighbourhood[p].always_excluded(n, h.second))
-                  wide.push_back({p, pass, n, h.second});
+                  wide.push_back({{p, pass, n, h.second}});
             }
         }
     std::sort(wide.begin(), wide.end());
     wide.erase(std::unique(wide.begin(), wide.end()), wide.end());
     return wide;
+  }
+
+  template <int dim>
+  template <typename Tree, typename Drift>
+  void ContactProblem<dim>::self_look_ahead(const unsigned int p, const StepSide &side, const Tree &tree,
+                                            const Drift &drift, std::vector<Coupling> &wide) const
+  {
+    namespace bgi = boost::geometry::index;
+    // Self-contact: the faces a node meets are its own surface's, across a
+    // fold closing NORMAL to them, and "the master under the node" is its own
+    // neighbourhood moving with it. So each (node, face) is tested with its
+    // own relative motion: the node's path relative to the face (the mean
+    // drift of its nodes) over the look-ahead, against the face's box
+    // enlarged by the step's margin plus the normal margin. A straight skin
+    // moving as a whole adds nothing beyond its step candidates. Only faces
+    // turned against the node (normals more than 60° apart) can close onto
+    // it: the skin beyond the rings, compressed along itself (the crush's
+    // front), moves towards the node but is no fold. Within the rings
+    // (3 … 4) the compressed skin itself comes within the step's margin.
+    const double margin = (1.5 + self_margin_faces) * largest_face;
+    std::vector<Tensor<1, dim>> face_drift(faces.size()), normal(faces.size());
+    double                      fastest = 0; // largest face drift (max norm)
+    for (const auto f : master_side(p, 0).faces)
+      {
+        std::vector<Point<dim>> xf;
+        for (const auto m : faces[f].nodes)
+          {
+            face_drift[f] += drift(m);
+            xf.push_back(x_old[m]);
+          }
+        normal[f] = contact::face_normal(xf);
+        face_drift[f] /= faces[f].nodes.size();
+        for (unsigned int d = 0; d < dim; ++d)
+          fastest = std::max(fastest, std::abs(face_drift[f][d]));
+      }
+    std::vector<std::pair<BoundingBox<dim>, unsigned int>> hits;
+    for (const auto n : side.mine)
+      {
+        Tensor<1, dim> node_normal;
+        for (const auto f : neighbourhood[p].own_faces(n))
+          node_normal += normal[f];
+        node_normal /= std::max(node_normal.norm(), 1e-300);
+        // A superset first: the node's own path, enlarged by what any face
+        // moves over the look-ahead.
+        BoundingBox<dim> own(std::vector<Point<dim>>{x_old[n], x_old[n] + look_ahead_steps * drift(n)});
+        own.extend(margin + look_ahead_steps * fastest);
+        hits.clear();
+        tree.query(bgi::intersects(own), std::back_inserter(hits));
+        for (const auto &[face_box, f] : hits)
+          {
+            const unsigned int ring = neighbourhood[p].ring(n, f);
+            if (ring == 1 || ring == 2)
+              continue;
+            // Beyond the rings, a fold's partner: turned against the node,
+            // in front of it and the node in front of the face (the skin
+            // across the wall's thickness is behind the node).
+            Point<dim> centre;
+            for (const auto m : faces[f].nodes)
+              centre += x_old[m] / double(faces[f].nodes.size());
+            const Tensor<1, dim> to_face = centre - x_old[n];
+            if (ring == 0 && (node_normal * normal[f] > 0.9 || to_face * node_normal < -0.5 * largest_face ||
+                              to_face * normal[f] > 0.5 * largest_face))
+              continue;
+            const Tensor<1, dim> relative = look_ahead_steps * (drift(n) - face_drift[f]);
+            BoundingBox<dim>     path(std::vector<Point<dim>>{x_old[n], x_old[n] + relative});
+            path.extend(margin);
+            if (path.get_neighbor_type(face_box) != NeighborType::not_neighbors)
+              wide.push_back({{p, 0, n, f}});
+          }
+      }
   }
 
   template <int dim>

@@ -416,6 +416,14 @@ namespace anvil
     /// slave nodes meet over the next look_ahead_steps if they move relative
     /// to the master as in the last step (coupling_margin.cc).
     std::vector<Coupling> look_ahead_couplings() const;
+    /// Self-contact's extra normal margin of the pattern, in largest face
+    /// lengths (Contact/Self-contact pattern margin).
+    double self_margin_faces = 1;
+    /// look_ahead_couplings() of a self-contact pair @p p: each (node, face)
+    /// with its own relative motion (a fold closes normal to the skin).
+    template <typename Tree, typename Drift>
+    void self_look_ahead(unsigned int p, const StepSide &side, const Tree &tree, const Drift &drift,
+                         std::vector<Coupling> &wide) const;
     /// Adds @p c to the sorted @p set; whether it was not there.
     static bool insert_sorted(std::vector<Coupling> &set, const Coupling &c);
 
