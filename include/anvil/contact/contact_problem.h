@@ -417,8 +417,8 @@ namespace anvil
     /// to the master as in the last step (coupling_margin.cc).
     std::vector<Coupling> look_ahead_couplings() const;
     /// Self-contact's extra normal margin of the pattern, in largest face
-    /// lengths (Contact/Self-contact pattern margin).
-    double self_margin_faces = 1;
+    /// lengths (Contact/Self-contact pattern margin; -1: off, the default).
+    double self_margin_faces = -1;
     /// look_ahead_couplings() of a self-contact pair @p p: each (node, face)
     /// with its own relative motion (a fold closes normal to the skin).
     template <typename Tree, typename Drift>
