@@ -12,6 +12,7 @@
 #include <deal.II/base/utilities.h>
 #include <deal.II/base/work_stream.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1_eulerian.h>
 #include <deal.II/grid/filtered_iterator.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -24,6 +25,7 @@
 
 #include "current_weights.h"
 #include "newton_factorisation.h"
+#include "q1_conduction.h"
 
 #include <algorithm>
 #include <cmath>
@@ -429,7 +431,32 @@ namespace anvil
     const bool axi = parameters.axisymmetric;
     const FunctionParser<dim> *expression = source_function.get();
 
+    // The linear tangent of Q1 on a Q1 mapping (the reference one or
+    // MappingQ1Eulerian): the cells from their moved vertices, no FEValues.
+    std::unique_ptr<thermal::Q1Conduction<dim>> q1;
+    if (tangent_of_linear && fe.degree == 1 &&
+        (!current_mapping || dynamic_cast<const MappingQ1Eulerian<dim, Vector> *>(current_mapping.get())))
+      q1 = std::make_unique<thermal::Q1Conduction<dim>>(fe, quadrature);
+    const Mapping<dim> &mapping = get_mapping();
+
     auto worker = [&](const CellIterator &cell, thermal::ScratchData<dim> &s, thermal::CopyData &c) {
+      const auto &m = materials.at(cell->material_id());
+      if (q1 && m.dk_dT() == 0)
+        {
+          cell->get_dof_indices(c.dofs);
+          c.matrix = 0;
+          q1->add_cell_matrix(mapping.get_vertices(cell), m.conductivity, axi, c.matrix);
+          // Only convection and radiation have a tangent on a face.
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary())
+              {
+                const auto bc = boundary_conditions.boundaries.find(cell->face(f)->boundary_id());
+                if (bc != boundary_conditions.boundaries.end() && !bc->second.temperature &&
+                    (bc->second.h || bc->second.emissivity))
+                  thermal::boundary_face<dim>(s, cell, f, bc->second, &T, axi, true, c);
+              }
+          return;
+        }
       s.fe_values.reinit(cell);
       if (coupling)
         s.fe_reference.reinit(cell);
@@ -450,7 +477,6 @@ namespace anvil
             s.g_dot(j)    = it == g_dot.end() ? 0. : it->second;
             any_g_dot     = any_g_dot || s.g_dot(j) != 0;
           }
-      const auto &m = materials.at(cell->material_id());
       if (rhs)
         {
           thermal::VolumeSource::cell_rates<dim>(s, cell, expression, &heat_source,
