@@ -19,8 +19,7 @@ namespace anvil
     inline void factorise_newton_matrix(const dealii::TrilinosWrappers::SparseMatrix &matrix,
                                         const bool use_direct, const unsigned int degree,
                                         std::unique_ptr<KluFactorization> &direct,
-                                        std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> &amg,
-                                        const bool allow_band = false)
+                                        std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> &amg)
     {
       if (use_direct)
         {
@@ -28,10 +27,6 @@ namespace anvil
           // (KluFactorization notices a new one and analyses it again).
           if (!direct)
             direct = std::make_unique<KluFactorization>();
-          // In 2D the band LU on an RCM numbering where its estimated work is
-          // below KLU's (core/klu_factorization.h; in 3D RCM's band holds a
-          // cross-section: KLU, as for the mechanics).
-          direct->method = allow_band ? KluFactorization::Method::automatic : KluFactorization::Method::klu;
           direct->factorize(matrix);
           return;
         }

@@ -94,7 +94,7 @@ namespace anvil
         newton_matrix.add(gamma, tangent_matrix);
       }
     thermal::factorise_newton_matrix(newton_matrix, use_direct, parameters.polynomial_degree,
-                                     newton_direct, newton_amg, dim == 2);
+                                     newton_direct, newton_amg);
     current_gamma = gamma;
   }
 
