@@ -238,13 +238,6 @@ namespace anvil
         // it, would keep cutting its span in as many steps. Bounds 1, 1 let
         // the proposal grow (source/thermal/arkode_integrator.h, next_step).
         ARKStepSetFixedStepBounds(mem, 1., 1.);
-        // f at a solved implicit stage from the stage equation itself,
-        // (M z_cor − data)/γ, instead of one more evaluation (SUNDIALS ≥
-        // 6.4): as exact as the stage's solve, which in a linear problem is
-        // one Newton step on the factorised M − γJ (or GMRES to ARKode's
-        // tolerance). One right-hand side per implicit stage saved.
-        if (settings.linear)
-          ARKStepSetDeduceImplicitRhs(mem, SUNTRUE);
         if (settings.fixed_step_size > 0)
           {
             // Whole number of steps: h = span / ceil(span / h_fixed).
