@@ -9,6 +9,11 @@
 // worker calls only reads: FEValues (per thread), the ghosted temperature,
 // the FunctionParsers (deal.II keeps one muparser per thread; their time is
 // set before the loop), the materials, the mechanics' heat sources.
+//
+// Long because the tangent's copier (CRS positions kept per pattern) and the
+// Q1 conduction path (session 13) joined assemble(); the Dirichlet couplings
+// and rates (assemble_dirichlet_couplings, dirichlet_rates) are the part to
+// move to a file of their own next.
 #include <deal.II/base/utilities.h>
 #include <deal.II/base/work_stream.h>
 #include <deal.II/fe/fe_values.h>
