@@ -9,9 +9,15 @@
 // worker calls only reads: FEValues (per thread), the ghosted temperature,
 // the FunctionParsers (deal.II keeps one muparser per thread; their time is
 // set before the loop), the materials, the mechanics' heat sources.
+//
+// Long because the tangent's copier (CRS positions kept per pattern) and the
+// Q1 conduction path (session 13) joined assemble(); the Dirichlet couplings
+// and rates (assemble_dirichlet_couplings, dirichlet_rates) are the part to
+// move to a file of their own next.
 #include <deal.II/base/utilities.h>
 #include <deal.II/base/work_stream.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1_eulerian.h>
 #include <deal.II/grid/filtered_iterator.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -24,8 +30,10 @@
 
 #include "current_weights.h"
 #include "newton_factorisation.h"
+#include "q1_conduction.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace anvil
@@ -429,7 +437,36 @@ namespace anvil
     const bool axi = parameters.axisymmetric;
     const FunctionParser<dim> *expression = source_function.get();
 
+    // The linear tangent of Q1 on a Q1 mapping (the reference one or
+    // MappingQ1Eulerian): the cells from their moved vertices, no FEValues.
+    std::unique_ptr<thermal::Q1Conduction<dim>> q1;
+    const bool moved = current_mapping != nullptr;
+    if (tangent_of_linear && fe.degree == 1 && (!moved || !moved_vertices.empty()))
+      q1 = std::make_unique<thermal::Q1Conduction<dim>>(fe, quadrature);
+
     auto worker = [&](const CellIterator &cell, thermal::ScratchData<dim> &s, thermal::CopyData &c) {
+      const auto &m = materials.at(cell->material_id());
+      if (q1 && m.dk_dT() == 0)
+        {
+          cell->get_dof_indices(c.dofs);
+          c.cell_index = cell->active_cell_index();
+          c.matrix     = 0;
+          std::array<Point<dim>, thermal::Q1Conduction<dim>::n_vertices> x;
+          for (unsigned int v = 0; v < x.size(); ++v)
+            x[v] = moved ? moved_vertices[cell->vertex_index(v)] : cell->vertex(v);
+          q1->add_cell_matrix(x, m.conductivity, axi, c.matrix);
+          // Only convection and radiation have a tangent on a face.
+          for (const unsigned int f : cell->face_indices())
+            if (cell->face(f)->at_boundary())
+              {
+                const auto bc = boundary_conditions.boundaries.find(cell->face(f)->boundary_id());
+                if (bc != boundary_conditions.boundaries.end() && !bc->second.temperature &&
+                    (bc->second.h || bc->second.emissivity))
+                  thermal::boundary_face<dim>(s, cell, f, bc->second, &T, axi, true, c);
+              }
+          return;
+        }
+      c.cell_index = cell->active_cell_index();
       s.fe_values.reinit(cell);
       if (coupling)
         s.fe_reference.reinit(cell);
@@ -450,7 +487,6 @@ namespace anvil
             s.g_dot(j)    = it == g_dot.end() ? 0. : it->second;
             any_g_dot     = any_g_dot || s.g_dot(j) != 0;
           }
-      const auto &m = materials.at(cell->material_id());
       if (rhs)
         {
           thermal::VolumeSource::cell_rates<dim>(s, cell, expression, &heat_source,
@@ -473,19 +509,59 @@ namespace anvil
     // SumIntoGlobalValues, what AffineConstraints calls, looks up every column
     // of every row): the same one addition per entry, in cell order (as the
     // mechanics' copier, source/mechanics/assembly.cc).
-    std::vector<int> local_rows(fe.n_dofs_per_cell()), local_cols(fe.n_dofs_per_cell());
+    // Further, such a cell's entries are found in Epetra's CRS value array
+    // once per pattern (tangent_positions) and added there: no row search.
+    const unsigned int n_dofs = fe.n_dofs_per_cell();
+    std::vector<int>   local_rows(n_dofs), local_cols(n_dofs);
+    int               *row_start = nullptr, *row_columns = nullptr;
+    double            *values    = nullptr;
+    if (tangent)
+      {
+        auto &matrix = const_cast<Epetra_CrsMatrix &>(tangent->trilinos_matrix());
+        if (matrix.ExtractCrsDataPointers(row_start, row_columns, values) != 0)
+          values = nullptr;
+        // A new pattern's value array may come back at a freed one's
+        // address: the reinit sites also forget the positions.
+        if (values && (values != tangent_positions_values ||
+                       tangent_positions.size() != triangulation.n_active_cells() * n_dofs * n_dofs))
+          {
+            tangent_positions.assign(triangulation.n_active_cells() * n_dofs * n_dofs, -1);
+            tangent_positions_values = values;
+          }
+      }
     auto add_by_local_indices = [&](const thermal::CopyData &c) {
       auto &matrix = const_cast<Epetra_CrsMatrix &>(tangent->trilinos_matrix());
+      int  *positions = values ? &tangent_positions[std::size_t(c.cell_index) * n_dofs * n_dofs] : nullptr;
+      if (positions && positions[0] >= 0)
+        {
+          for (unsigned int k = 0; k < n_dofs * n_dofs; ++k)
+            values[positions[k]] += c.matrix(k / n_dofs, k % n_dofs);
+          return true;
+        }
+      if (positions && positions[0] == -2)
+        return false;
       for (unsigned int i = 0; i < c.dofs.size(); ++i)
         {
-          if (hanging.is_constrained(c.dofs[i]))
-            return false;
           const auto g  = static_cast<TrilinosWrappers::types::int_type>(c.dofs[i]);
           local_rows[i] = matrix.LRID(g);
           local_cols[i] = matrix.LCID(g);
-          if (local_rows[i] < 0 || local_cols[i] < 0)
-            return false;
+          if (hanging.is_constrained(c.dofs[i]) || local_rows[i] < 0 || local_cols[i] < 0)
+            {
+              if (positions)
+                positions[0] = -2;
+              return false;
+            }
         }
+      if (positions)
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          for (unsigned int j = 0; j < n_dofs; ++j)
+            {
+              const int *begin = row_columns + row_start[local_rows[i]],
+                        *end   = row_columns + row_start[local_rows[i] + 1];
+              const int *found = std::find(begin, end, local_cols[j]);
+              AssertThrow(found != end, ExcMessage("a cell's entry is not in the heat tangent's pattern"));
+              positions[i * n_dofs + j] = int(found - row_columns);
+            }
       for (unsigned int i = 0; i < c.dofs.size(); ++i)
         {
           const int ierr = matrix.SumIntoMyValues(local_rows[i], c.dofs.size(), &c.matrix(i, 0),

@@ -196,6 +196,7 @@ namespace anvil
     }
     for (auto *m : {&mass_matrix, &tangent_matrix, &newton_matrix})
       m->reinit(locally_owned_dofs, locally_owned_dofs, cell_pattern, mpi_communicator);
+    tangent_positions_values = nullptr; // its entries moved (thermal_assembly.cc)
     exchange_pattern_current = false;
     for (auto *v : {&lumped_mass, &mass_diagonal, &solution, &old_solution})
       v->reinit(locally_owned_dofs, mpi_communicator);
@@ -336,8 +337,21 @@ namespace anvil
     // Q1 mechanics: the support points are the moved vertices, read off the
     // vertex dofs (the same numbers MappingQEulerian interpolates with an
     // FEValues per cell; two_blocks' tangent loop: 6.7 → 3.6 M instructions).
+    moved_vertices.clear();
     if (mechanics_dofs.get_fe().degree == 1)
-      current_mapping = std::make_unique<MappingQ1Eulerian<dim, Vector>>(mechanics_dofs, configuration);
+      {
+        current_mapping = std::make_unique<MappingQ1Eulerian<dim, Vector>>(mechanics_dofs, configuration);
+        moved_vertices.resize(triangulation.n_vertices());
+        for (const auto &cell : mechanics_dofs.active_cell_iterators())
+          if (cell->is_locally_owned())
+            for (const unsigned int v : cell->vertex_indices())
+              {
+                Point<dim> x = cell->vertex(v);
+                for (unsigned int d = 0; d < dim; ++d)
+                  x[d] += configuration(cell->vertex_dof_index(v, d));
+                moved_vertices[cell->vertex_index(v)] = x;
+              }
+      }
     else
       current_mapping = std::make_unique<MappingQEulerian<dim, Vector>>(
         mechanics_dofs.get_fe().degree, mechanics_dofs, configuration);

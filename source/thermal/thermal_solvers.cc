@@ -39,6 +39,7 @@ namespace anvil
           exchange_pattern.add(i, dsp.column_number(i, k));
     }
     tangent_matrix.reinit(newton_matrix);
+    tangent_positions_values = nullptr; // its entries moved (thermal_assembly.cc)
     mass_in_pattern.reinit(newton_matrix);
     newton_direct->clear();
     exchange_pattern_current = true;

@@ -77,6 +77,7 @@ namespace anvil
       dealii::FullMatrix<double>                   matrix;
       dealii::Vector<double>                       vector, row_sums;
       std::vector<dealii::types::global_dof_index> dofs;
+      unsigned int                                 cell_index = 0; // active cell index
       /// Loops that add each face on its own (the prescribed fluxes of the
       /// fast linear path): the first n_faces entries are this cell's faces.
       std::vector<dealii::Vector<double>> face_vectors;

@@ -433,6 +433,15 @@ namespace anvil
     dealii::MappingQ<dim>   reference_mapping;
     std::unique_ptr<dealii::Mapping<dim>> current_mapping;
     Vector                  configuration; // ghosted displacement behind current_mapping
+    /// x = X + u at every vertex of an owned cell (by vertex index) where the
+    /// mechanics is Q1, what MappingQ1Eulerian::get_vertices computes per
+    /// call: the Q1 conduction kernel's input (thermal_assembly.cc).
+    std::vector<dealii::Point<dim>> moved_vertices;
+    /// Where each owned cell's tangent entries sit in Epetra's CRS value
+    /// array (active cell index × n_dofs², −1: not found yet, −2: the cell
+    /// adds another way), for the value array tangent_positions_values.
+    std::vector<int> tangent_positions;
+    const double    *tangent_positions_values = nullptr;
     dealii::DoFHandler<dim> dof_handler;
     dealii::QGauss<dim>     quadrature;
     dealii::QGauss<dim - 1> face_quadrature;
