@@ -6,10 +6,7 @@
 #include <anvil/core/instantiate.h>
 #include <anvil/mechanics/assembly_kernels.h>
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
-#include <vector>
 
 namespace anvil
 {
@@ -45,48 +42,20 @@ namespace anvil
         }
     }
 
-    namespace
-    {
-      /// x^α of the old configuration's ratio x = J₀ₙ/det Fₙ per point: constant
-      /// over a step, so its root (the longest part of an update's F̄) is taken
-      /// once per step, not at every update. A memo of the function itself —
-      /// an entry is used only if its ratio is bit-equal to the one asked — so
-      /// no step, mesh, thread or problem can make it stale (one table per
-      /// thread and exponent; an index of another mesh only misses).
-      struct KeptRoot
-      {
-        double ratio = std::numeric_limits<double>::quiet_NaN(), root = 0;
-      };
-
-      template <bool square_root>
-      double kept_root(const double ratio, const std::size_t point)
-      {
-        thread_local std::vector<KeptRoot> kept;
-        if (point >= kept.size())
-          kept.resize(std::max<std::size_t>(point + 1, 2 * kept.size()));
-        KeptRoot &k = kept[point];
-        if (!(k.ratio == ratio))
-          k = {ratio, square_root ? std::sqrt(ratio) : std::cbrt(ratio)};
-        return k.root;
-      }
-    } // namespace
-
     template <int dim>
     Tensor<2, 3> FBar<dim>::material_gradient(const ScratchData<dim> &scratch,
                                               const Tensor<2, 3>     &F,
                                               const Tensor<2, 3>     &F_old,
                                               double                 &beta,
-                                              Tensor<2, 3>           &F_mat_old,
-                                              const std::size_t       point) const
+                                              Tensor<2, 3>           &F_mat_old) const
     {
       // F̄ = (J₀/J)^α F on the active block.
       // x^α with α = 1/2 (plane strain) or 1/3: sqrt or cbrt, not pow().
-      const bool   plane_strain = formulation.plane_strain;
-      const double ratio        = scratch.J0 / formulation.active_det(F);
-      const double ratio_old    = scratch.J0_old / formulation.active_det(F_old);
-      beta = plane_strain ? std::sqrt(ratio) : std::cbrt(ratio);
-      F_mat_old = formulation.bar(F_old, plane_strain ? kept_root<true>(ratio_old, point) :
-                                                        kept_root<false>(ratio_old, point));
+      const auto power = [this](const double x) {
+        return formulation.plane_strain ? std::sqrt(x) : std::cbrt(x);
+      };
+      beta      = power(scratch.J0 / formulation.active_det(F));
+      F_mat_old = formulation.bar(F_old, power(scratch.J0_old / formulation.active_det(F_old)));
       return formulation.bar(F, beta);
     }
 

@@ -151,8 +151,7 @@ namespace anvil
       auto cell_points = (*context.points)[cell];
 
       MaterialIncrement    increment;
-      const unsigned int   n_q = scratch.points.size();
-      for (unsigned int q = 0; q < n_q; ++q)
+      for (unsigned int q = 0; q < scratch.points.size(); ++q)
         {
           PointValues       &p     = scratch.points[q];
           const double       R     = formulation.radius(ref, q);
@@ -167,8 +166,7 @@ namespace anvil
           double       beta  = 1;
           Tensor<2, 3> F_mat = F, F_mat_old = F_old; // what the material sees
           if (formulation.f_bar)
-            F_mat = f_bar.material_gradient(scratch, F, F_old, beta, F_mat_old,
-                                            std::size_t(cell->active_cell_index()) * n_q + q);
+            F_mat = f_bar.material_gradient(scratch, F, F_old, beta, F_mat_old);
           IncrementalKinematics &kin = p.kin;
           kin.reinit(F_mat, F_mat_old, formulation.objective_rate,
                      kinematics_planar_path | (context.with_matrix ? kinematics_tangent : kinematics_increment));
@@ -240,8 +238,7 @@ namespace anvil
         f_bar.evaluate_centre(scratch);
       MaterialIncrement    increment;
       increment.temperature = context.reference_temperature; // without a temperature field
-      const unsigned int n_q = scratch.points.size();
-      for (unsigned int q = 0; q < n_q; ++q)
+      for (unsigned int q = 0; q < scratch.points.size(); ++q)
         {
           PointValues       &p     = scratch.points[q];
           const double       R     = formulation.radius(ref, q);
@@ -252,8 +249,7 @@ namespace anvil
               double       beta  = 1;
               Tensor<2, 3> F_mat = F, F_mat_old = F_old;
               if (formulation.f_bar)
-                F_mat = f_bar.material_gradient(scratch, F, F_old, beta, F_mat_old,
-                                                std::size_t(cell->active_cell_index()) * n_q + q);
+                F_mat = f_bar.material_gradient(scratch, F, F_old, beta, F_mat_old);
               p.kin.reinit(F_mat, F_mat_old, formulation.objective_rate, kinematics_planar_path);
             }
           MaterialPoint &point                  = *cell_points[q];

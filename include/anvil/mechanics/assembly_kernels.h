@@ -47,14 +47,11 @@ namespace anvil
       /// J₀ at t_n+1 and t_n, F₀⁻¹ and tr(F₀⁻¹ ∂F₀/∂u_a) at the cell centre.
       void evaluate_centre(ScratchData<dim> &scratch) const;
       /// β = (J₀/J)^α and F̄ (returned), with F̄_n of the old configuration in @p F_mat_old.
-      /// @p point: the point's index (cell × points per cell + q), where its
-      /// (J₀ₙ/det Fₙ)^α is kept over the step.
       dealii::Tensor<2, 3> material_gradient(const ScratchData<dim>     &scratch,
                                              const dealii::Tensor<2, 3> &F,
                                              const dealii::Tensor<2, 3> &F_old,
                                              double                     &beta,
-                                             dealii::Tensor<2, 3>       &F_mat_old,
-                                             std::size_t                 point) const;
+                                             dealii::Tensor<2, 3>       &F_mat_old) const;
       /// δσ in the direction F̄ itself: Σ_d F̄_kL δσ_d.
       dealii::SymmetricTensor<2, 3>
       stress_along(const dealii::Tensor<2, 3>                        &F_mat,
