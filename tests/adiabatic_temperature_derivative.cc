@@ -14,6 +14,8 @@
 
 #include <anvil/material/material_point.h>
 
+#include "adiabatic_materials.h"
+
 #include <cmath>
 #include <iostream>
 
@@ -89,12 +91,7 @@ namespace
 
 int main()
 {
-  const std::string elastic =
-    "subsection Elasticity\n set Young's modulus = 200000\n set Poisson's ratio = 0.3\n"
-    " set Thermal expansion = 5e-5\n set Reference temperature = 293\n"
-    " set Density = 7.8e-9\n set Heat capacity = 4.6e8\n"
-    " subsection Modulus temperature factor\n set Model = linear\n set Softening = 4e-4\n end\n"
-    "end\n";
+  const std::string &elastic = testing::steel_elastic;
   const std::string tabulated_elastic =
     "subsection Elasticity\n set Young's modulus = 70000\n set Poisson's ratio = 0.33\n"
     " set Thermal expansion = 5e-5\n set Reference temperature = 293\n"
@@ -103,18 +100,8 @@ int main()
     " subsection Thermal expansion temperature factor\n set Model = table\n"
     " set Table = 250 : 0.95, 293 : 1, 347 : 1.1, 398 : 1.05, 600 : 1.3\n end\n"
     "end\n";
-  const std::vector<std::pair<std::string, std::string>> cases = {
-    {"J2 linear hardening, linear softening (eq. 35)",
-     "set Model = J2\n" + elastic +
-       "subsection Hardening\n set Model = linear\n set Initial yield stress = 150\n"
-       " set Hardening modulus = 1000\n subsection Thermal softening\n set Model = linear\n"
-       " set Softening coefficient = 0.002\n set Reference temperature = 293\n end\nend\n"},
-    {"J2 saturation hardening, linear softening (eq. 35)",
-     "set Model = J2\n" + elastic +
-       "subsection Hardening\n set Model = saturation\n set Initial yield stress = 150\n"
-       " set Hardening modulus = 129\n set Saturation stress = 300\n set Saturation exponent = 16.9\n"
-       " subsection Thermal softening\n set Model = linear\n set Softening coefficient = 0.002\n"
-       " set Reference temperature = 293\n end\nend\n"},
+  std::vector<std::pair<std::string, std::string>> cases = testing::j2_softening_cases(elastic);
+  const std::vector<std::pair<std::string, std::string>> others = {
     {"Johnson-Cook model, multiplicative rate factor",
      "set Model = Johnson-Cook\n" + elastic +
        "subsection Johnson-Cook\n set A = 300\n set B = 292\n set n = 0.31\n set C = 0.025\n"
@@ -136,6 +123,7 @@ int main()
        " subsection Hardening modulus of T\n set Model = table\n"
        " set Table = 250 : 1100, 293 : 1000, 347 : 600, 398 : 900, 600 : 100\n end\nend\n"},
   };
+  cases.insert(cases.end(), others.begin(), others.end());
   SymmetricTensor<2, 3> de; // plastic: a shear-dominated stretch with some dilatation
   de[0][0] = 0.012, de[1][1] = -0.004, de[2][2] = 0.001, de[0][1] = 0.008, de[1][2] = -0.003;
   SymmetricTensor<2, 3> inside, on_surface; // σₙ well inside, and at ~q = 200 MPa

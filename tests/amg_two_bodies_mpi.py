@@ -16,7 +16,7 @@ does, and the per-process one more (its coarse aggregates cannot join the
 two strips: half their size), or the test no longer tests what it claims."""
 import os
 import re
-from anvil_test import run, read_csv, check, finish
+from anvil_test import run, check, finish, histories_agree
 
 N = 4000  # cells along the upper strip: 48 006 DoFs, three AMG levels on one process, four per process
 SETS = ["Geometry/Blocks=lower: 0, 0, %g, 0.02, %d, 2; upper: 0, 0.02, %g, 0.04, %d, 2"
@@ -60,11 +60,6 @@ check(max(counts["iterative_np2"] or [0]) > one,
       % (max(counts["iterative_np2"] or [0]), one))
 
 for name in ("iterative_np1", "iterative_np2", "coupled_np2"):
-    for f in ("reactions.csv", "energy.csv"):
-        a, b = read_csv(out["direct"] + "/" + f), read_csv(out[name] + "/" + f)
-        keys = [k for k in a if k in b]
-        scale = max(max(abs(x) for x in a[k]) for k in keys) or 1.0
-        worst = max(abs(x - y) for k in keys for x, y in zip(a[k], b[k]))
-        check(worst <= 1e-8 * scale, "%s, %s: direct (np 1) vs %s largest difference %.2e (relative %.1e <= 1e-8)"
-              % (name, f, name, worst, worst / scale))
+    histories_agree(out["direct"], out[name], ("reactions.csv", "energy.csv"), 1e-8,
+                    "direct (np 1) vs " + name)
 finish()

@@ -149,3 +149,16 @@ def largest_column_difference(out_a, out_b, names, summary_a=None, summary_b=Non
         if d > worst:
             worst, where = d, "quantity " + key
     return worst, where
+
+
+def histories_agree(out_a, out_b, names, rtol, label):
+    """Check that two runs' CSV histories (files @p names, the columns both
+    have) agree to @p rtol of each file's largest value: the solver-tolerance
+    comparison of an iterative or parallel run against a direct one."""
+    for name in names:
+        a, b = read_csv(os.path.join(out_a, name)), read_csv(os.path.join(out_b, name))
+        keys = [k for k in a if k in b]
+        scale = max(max(abs(x) for x in a[k]) for k in keys) or 1.0
+        worst = max(abs(x - y) for k in keys for x, y in zip(a[k], b[k]))
+        check(worst <= rtol * scale, "%s, %s: largest difference %.2e (relative %.1e <= %.0e)"
+              % (label, name, worst, worst / scale, rtol))

@@ -19,6 +19,8 @@
 #include <anvil/material/kinematics.h>
 #include <anvil/material/material_point.h>
 
+#include "adiabatic_materials.h"
+
 #include <cmath>
 #include <iostream>
 
@@ -131,25 +133,7 @@ namespace
 
 int main()
 {
-  const std::string elastic =
-    "subsection Elasticity\n set Young's modulus = 200000\n set Poisson's ratio = 0.3\n"
-    " set Thermal expansion = 5e-5\n set Reference temperature = 293\n"
-    " set Density = 7.8e-9\n set Heat capacity = 4.6e8\n"
-    " subsection Modulus temperature factor\n set Model = linear\n set Softening = 4e-4\n end\n"
-    "end\n";
-  const std::vector<std::pair<std::string, std::string>> cases = {
-    {"J2 linear hardening, linear softening (eq. 35; the tube's laws)",
-     "set Model = J2\n" + elastic +
-       "subsection Hardening\n set Model = linear\n set Initial yield stress = 150\n"
-       " set Hardening modulus = 1000\n subsection Thermal softening\n set Model = linear\n"
-       " set Softening coefficient = 0.002\n set Reference temperature = 293\n end\nend\n"},
-    {"J2 saturation hardening, linear softening (eq. 35)",
-     "set Model = J2\n" + elastic +
-       "subsection Hardening\n set Model = saturation\n set Initial yield stress = 150\n"
-       " set Hardening modulus = 129\n set Saturation stress = 300\n set Saturation exponent = 16.9\n"
-       " subsection Thermal softening\n set Model = linear\n set Softening coefficient = 0.002\n"
-       " set Reference temperature = 293\n end\nend\n"},
-  };
+  const auto cases = testing::j2_softening_cases(testing::steel_elastic);
   SymmetricTensor<2, 3> plastic, elastic_de; // a plastic step, and a small elastic one
   plastic[0][0] = 0.012, plastic[1][1] = -0.004, plastic[2][2] = 0.001, plastic[0][1] = 0.008;
   elastic_de[0][0] = 1e-4, elastic_de[1][1] = -3e-5, elastic_de[2][2] = 2e-5, elastic_de[0][1] = 2e-5;
