@@ -54,12 +54,7 @@ namespace
         // 3D facets: flat and warped.
         for (const bool warped : {false, true})
           {
-            std::vector<Point<3>> master = {Point<3>(0, 0, 0), Point<3>(1, 0, 0), Point<3>(0, 1, 0), Point<3>(1, 1, 0)};
-            if (warped)
-              master = {Point<3>(0, 0, 0.05), Point<3>(1.1, -0.05, 0), Point<3>(-0.05, 0.95, -0.1), Point<3>(1.05, 1.1, 0.25)};
-            std::vector<Point<3>> master_old = master;
-            for (unsigned int a = 0; a < 4; ++a)
-              master_old[a] += Tensor<1, 3>({0.0002 * a, -0.0004, 0.0001 * a});
+            const auto [master, master_old] = test_facet(warped);
             // The slave 0.01 below the facet near (0.35, 0.6).
             const Point<3> on_facet = facet_point(master, 0.35, 0.6);
             const auto     probe    = node_to_segment(on_facet, on_facet, master, master_old, NodeState<3>(), law, false);

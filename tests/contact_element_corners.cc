@@ -87,12 +87,7 @@ namespace contact_test
       for (unsigned int edge = 0; edge < 4; ++edge)
         for (const bool slide : {false, true})
           {
-            std::vector<Point<3>> master = {Point<3>(0, 0, 0), Point<3>(1, 0, 0), Point<3>(0, 1, 0), Point<3>(1, 1, 0)};
-            if (warped)
-              master = {Point<3>(0, 0, 0.05), Point<3>(1.1, -0.05, 0), Point<3>(-0.05, 0.95, -0.1), Point<3>(1.05, 1.1, 0.25)};
-            std::vector<Point<3>> master_old = master;
-            for (unsigned int a = 0; a < 4; ++a)
-              master_old[a] += Tensor<1, 3>({0.0002 * a, -0.0004, 0.0001 * a});
+            const auto [master, master_old] = test_facet(warped);
             // 0.02 facet parameters beyond edge 2k + e (inside the taper), 0.6 along it.
             const unsigned int k = edge / 2;
             double             st[2];

@@ -188,6 +188,18 @@ namespace contact_test
     return Point<3>((1 - s) * (1 - t) * x[0] + s * (1 - t) * x[1] + (1 - s) * t * x[2] + s * t * x[3]);
   }
 
+  /// The test facet, flat or warped, and its old position (moved a little).
+  inline std::pair<std::vector<Point<3>>, std::vector<Point<3>>> test_facet(const bool warped)
+  {
+    std::vector<Point<3>> master = {Point<3>(0, 0, 0), Point<3>(1, 0, 0), Point<3>(0, 1, 0), Point<3>(1, 1, 0)};
+    if (warped)
+      master = {Point<3>(0, 0, 0.05), Point<3>(1.1, -0.05, 0), Point<3>(-0.05, 0.95, -0.1), Point<3>(1.05, 1.1, 0.25)};
+    std::vector<Point<3>> master_old = master;
+    for (unsigned int a = 0; a < 4; ++a)
+      master_old[a] += Tensor<1, 3>({0.0002 * a, -0.0004, 0.0001 * a});
+    return {master, master_old};
+  }
+
   void   test_tools();           // 1. contact_element_tools.cc
   double test_concave_corner();  // 8. contact_element_corners.cc
   double test_free_edge();       // 9. contact_element_corners.cc
