@@ -14,6 +14,9 @@
 #include <anvil/mechanics/mechanical_problem.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
 
 namespace anvil
 {
@@ -222,7 +225,22 @@ namespace anvil
     energy_audit.thermal_work += step_audit[audit_thermal_work];
     energy_audit.hypoelastic_volume_work += step_audit[audit_volume_work];
     energy_audit.f_bar_work += step_audit[audit_stress_work] - step_audit[audit_material_work];
-    energy_audit.elastic_energy = elastic_strain_energy();
+    // compute_step_audit() summed the state's elastic energy at the points;
+    // ANVIL_AUDIT_CHECK (tests) compares it with the FEValues route.
+    static const bool check_elastic_energy = std::getenv("ANVIL_AUDIT_CHECK") != nullptr;
+    if (check_elastic_energy)
+      {
+        const double by_fe_values = elastic_strain_energy();
+        const double difference   = std::abs(by_fe_values - energy_audit.elastic_energy);
+        // Every point's W J dV ≥ 0: the sums differ by the round-off of J and dV.
+        AssertThrow(difference <= 1e-12 * std::abs(by_fe_values),
+                    ExcMessage("ANVIL_AUDIT_CHECK: elastic energy at the points " +
+                               std::to_string(energy_audit.elastic_energy) + " N mm, by FEValues " +
+                               std::to_string(by_fe_values) + " N mm"));
+        if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+          std::printf("ANVIL_AUDIT_CHECK elastic energy: points %.17g FEValues %.17g N mm\n",
+                      energy_audit.elastic_energy, by_fe_values);
+      }
 
     previous_increment = du;
     if (contact)
