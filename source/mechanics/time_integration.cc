@@ -165,28 +165,33 @@ namespace anvil
   {
     TrilinosWrappers::MPI::Vector du(owned_solution);
     du -= owned_old_solution;
+    // The owned vectors share locally_owned_dofs' layout: the k-th local
+    // entry of each is one dof's, so element-wise updates run on the arrays.
+    const unsigned int n_owned = owned_solution.locally_owned_size();
 
     if (parameters.dynamic)
       {
         // Newmark update of a and v from the converged u.
         TrilinosWrappers::MPI::Vector a(acceleration_old), v(velocity_old);
-        const double                  dt = current_time_step;
-        for (const auto i : locally_owned_dofs)
+        const double                  dt    = current_time_step;
+        const double *const           u     = owned_solution.begin();
+        const double *const           u_old = owned_old_solution.begin();
+        const double *const           v_old = velocity_old.begin();
+        const double *const           a_old = acceleration_old.begin();
+        double *const                 a_new = a.begin();
+        double *const                 v_new = v.begin();
+        for (unsigned int k = 0; k < n_owned; ++k)
           {
-            a(i) = newmark_acceleration(owned_solution(i), owned_old_solution(i), velocity_old(i),
-                                        acceleration_old(i));
-            v(i) = velocity_old(i) + dt * ((1 - newmark_gamma) * acceleration_old(i) +
-                                           newmark_gamma * a(i));
+            a_new[k] = newmark_acceleration(u[k], u_old[k], v_old[k], a_old[k]);
+            v_new[k] = v_old[k] + dt * ((1 - newmark_gamma) * a_old[k] + newmark_gamma * a_new[k]);
           }
-        a.compress(VectorOperation::insert);
-        v.compress(VectorOperation::insert);
         energy_audit.algorithmic_dissipation += step_algorithmic_dissipation(du, a, v);
-        acceleration_old         = a;
-        velocity_old             = v;
         acceleration_old_ghosted = a;
         velocity_old_ghosted     = v;
-        velocity_ghosted         = v;
-        static_residual_old      = internal_force;
+        velocity_ghosted         = velocity_old_ghosted; // the same layout: a copy, no import
+        acceleration_old.swap(a);
+        velocity_old.swap(v);
+        static_residual_old = internal_force;
         static_residual_old -= external_force;
         energy_audit.kinetic = kinetic_energy(velocity_ghosted);
       }
@@ -200,14 +205,20 @@ namespace anvil
     reaction_force -= external_force;
     TrilinosWrappers::MPI::Vector mean(external_force);
     mean += external_force_old;
-    for (const auto i : locally_owned_dofs)
-      {
-        // A support: a constrained dof with no master dofs (not a hanging node).
-        const auto *masters = constraints.get_constraint_entries(i);
-        if (masters && masters->empty())
-          mean(i) += reaction_force(i) + reaction_force_old(i);
-      }
-    mean.compress(VectorOperation::insert);
+    {
+      double *const       m      = mean.begin();
+      const double *const r      = reaction_force.begin();
+      const double *const r_old  = reaction_force_old.begin();
+      unsigned int        k      = 0;
+      for (const auto i : locally_owned_dofs)
+        {
+          // A support: a constrained dof with no master dofs (not a hanging node).
+          const auto *masters = constraints.get_constraint_entries(i);
+          if (masters && masters->empty())
+            m[k] += r[k] + r_old[k];
+          ++k;
+        }
+    }
     energy_audit.external_work += 0.5 * (mean * du);
     mean = internal_force;
     mean += internal_force_old;
