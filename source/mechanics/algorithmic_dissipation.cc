@@ -153,15 +153,20 @@ namespace anvil
 
     // [r]·Δu on the free dofs (hanging nodes included: their residual is
     // condensed onto the masters, which Δu of both carries), M[a]·Δu on the supports.
-    double residual_work = 0, support_work = 0;
+    // (The owned vectors' k-th local entries are the k-th owned dof's.)
+    double              residual_work = 0, support_work = 0;
+    const double *const m_a = m_jump_a.begin(), *const u = du.begin();
+    const double *const f_int = internal_force.begin(), *const f_ext = external_force.begin();
+    const double *const r_old = static_residual_old.begin();
+    unsigned int        k     = 0;
     for (const auto i : locally_owned_dofs)
       {
         const auto *masters = constraints.get_constraint_entries(i);
         if (masters && masters->empty())
-          support_work += m_jump_a(i) * du(i);
+          support_work += m_a[k] * u[k];
         else
-          residual_work +=
-            (internal_force(i) - external_force(i) - static_residual_old(i)) * du(i);
+          residual_work += (f_int[k] - f_ext[k] - r_old[k]) * u[k];
+        ++k;
       }
     residual_work = Utilities::MPI::sum(residual_work, mpi_communicator);
     support_work  = Utilities::MPI::sum(support_work, mpi_communicator);
