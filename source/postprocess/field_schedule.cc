@@ -16,7 +16,7 @@ namespace anvil
                       "Write VTU fields every this many steps (0: only the first and last).");
     prm.declare_entry("VTU encoding", "raw", Patterns::Selection("raw|zlib"),
                       "How the solution fields' VTU files hold their arrays: raw (appended "
-                      "binary, written at memory speed, files about 2.5 times larger) or zlib "
+                      "binary, written at memory speed, files about 3 times larger than zlib's) or zlib "
                       "(deal.II's compressed base64). ParaView and VTK read both.");
   }
 

@@ -32,7 +32,7 @@ namespace anvil
    * Writes @p piece to @p filename with its arrays appended raw
    * (`<AppendedData encoding="raw">`, each block its UInt32 byte count then
    * the bytes): no compression and no base64, so a write costs about a
-   * memory copy; VTK and ParaView read it. Files are about 2.5 times the
+   * memory copy; VTK and ParaView read it. Files are about 3 times the
    * zlib ones.
    */
   void write_vtu_raw(const VtuPiece &piece, const std::string &filename);
