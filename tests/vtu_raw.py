@@ -5,6 +5,8 @@ against deal.II's zlib writer, its independent reference.
    processes: the cantilever; 3D: the twisted bar): VTK (Debian's
    /usr/bin/python3) reads from both .pvtu the same points, cells, cell types
    and every point array bit for bit (both hold Float32).
+   The contact point cloud (contact_*.vtu, Float64 raw against the ascii
+   file's 10 digits): the same points and arrays to 1e-9 relative.
 2. Our own reading of a raw file, without VTK: each DataArray's offset points
    at a UInt32 byte count followed by that many bytes, the blocks follow one
    another to the end of the appended section, and the displacement block
@@ -16,6 +18,19 @@ import struct
 import subprocess
 
 from anvil_test import run, check, finish
+
+READ_CONTACT = r"""
+import json, sys, vtk
+from vtk.util.numpy_support import vtk_to_numpy
+out = []
+for f in sys.argv[1:]:
+    r = vtk.vtkXMLUnstructuredGridReader(); r.SetFileName(f); r.Update(); g = r.GetOutput()
+    pd = g.GetPointData()
+    d = {pd.GetArrayName(i): vtk_to_numpy(pd.GetArray(i)).ravel().tolist() for i in range(pd.GetNumberOfArrays())}
+    d["points"] = vtk_to_numpy(g.GetPoints().GetData()).ravel().tolist()
+    out.append(d)
+print(json.dumps(out))
+"""
 
 READ = r"""
 import json, sys, vtk
@@ -93,4 +108,17 @@ for scene, sets, np in CASES:
     values = list(struct.unpack("<%df" % (n // 4), blob[underscore + o + 4:underscore + o + 4 + n]))
     if np == 1:
         check(values == raw["arrays"]["displacement"], name + ": our reading of the displacement = VTK's")
+
+    if any(f.startswith("contact_") for f in os.listdir(os.path.dirname(files["raw"]))):
+        import json
+        last = sorted(f for f in os.listdir(os.path.dirname(files["raw"])) if f.startswith("contact_"))[-1]
+        pair = [os.path.join(os.path.dirname(files[e]), last) for e in ("raw", "zlib")]
+        p = subprocess.run(["/usr/bin/python3", "-c", READ_CONTACT] + pair, capture_output=True, text=True)
+        a, b = json.loads(p.stdout)
+        worst = max(abs(x - y) / max(max(abs(v) for v in b[k]), 1e-300)
+                    for k in b for x, y in zip(a[k], b[k])) if sorted(a) == sorted(b) else 1
+        print("  %s contact: %d nodes, %d arrays, largest difference raw - ascii %.1e relative"
+              % (name, len(b["points"]) // 3, len(b) - 1, worst))
+        check(len(a["points"]) == len(b["points"]) > 0 and worst < 1e-9,
+              name + ": contact fields raw = ascii to its 10 digits")
 finish()

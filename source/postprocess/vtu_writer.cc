@@ -37,8 +37,10 @@ namespace anvil
     }
   } // namespace
 
-  void write_vtu_raw(const VtuPiece &piece, const std::string &filename)
+  template <typename Float>
+  void write_vtu_raw(const BasicVtuPiece<Float> &piece, const std::string &filename)
   {
+    const char *type = sizeof(Float) == 4 ? "Float32" : "Float64";
     const std::size_t n_points = piece.n_points(), n_cells = piece.types.size();
     for (const auto &a : piece.point_data)
       if (a.values.size() != n_points * a.components)
@@ -55,14 +57,14 @@ namespace anvil
         << n_points << "\" NumberOfCells=\"" << n_cells << "\">\n<PointData>\n";
     for (const auto &a : piece.point_data)
       {
-        out << "<DataArray type=\"Float32\" Name=\"" << a.name << "\"";
+        out << "<DataArray type=\"" << type << "\" Name=\"" << a.name << "\"";
         if (a.components > 1)
           out << " NumberOfComponents=\"" << a.components << "\"";
         out << " format=\"appended\" offset=\"" << offset << "\"/>\n";
         offset += block_size(a.values);
       }
-    out << "</PointData>\n<Points>\n<DataArray type=\"Float32\" NumberOfComponents=\"3\" "
-           "format=\"appended\" offset=\""
+    out << "</PointData>\n<Points>\n<DataArray type=\"" << type
+        << "\" NumberOfComponents=\"3\" format=\"appended\" offset=\""
         << offset << "\"/>\n</Points>\n<Cells>\n";
     offset += block_size(piece.points);
     out << "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"appended\" offset=\""
@@ -84,9 +86,11 @@ namespace anvil
       throw std::runtime_error("cannot write " + filename);
   }
 
-  void write_pvtu_record(const VtuPiece &piece, const std::vector<std::string> &pieces,
+  template <typename Float>
+  void write_pvtu_record(const BasicVtuPiece<Float> &piece, const std::vector<std::string> &pieces,
                          const std::string &filename)
   {
+    const char *type = sizeof(Float) == 4 ? "Float32" : "Float64";
     std::ofstream out(filename);
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" "
            "byte_order=\""
@@ -94,17 +98,24 @@ namespace anvil
         << "    <PPointData>\n";
     for (const auto &a : piece.point_data)
       {
-        out << "    <PDataArray type=\"Float32\" Name=\"" << a.name << "\"";
+        out << "    <PDataArray type=\"" << type << "\" Name=\"" << a.name << "\"";
         if (a.components > 1)
           out << " NumberOfComponents=\"" << a.components << "\"";
         out << "/>\n";
       }
-    out << "    </PPointData>\n    <PPoints>\n      <PDataArray type=\"Float32\" "
-           "NumberOfComponents=\"3\"/>\n    </PPoints>\n";
+    out << "    </PPointData>\n    <PPoints>\n      <PDataArray type=\"" << type
+        << "\" NumberOfComponents=\"3\"/>\n    </PPoints>\n";
     for (const auto &p : pieces)
       out << "    <Piece Source=\"" << p << "\"/>\n";
     out << "  </PUnstructuredGrid>\n</VTKFile>\n";
     if (!out)
       throw std::runtime_error("cannot write " + filename);
   }
+
+  template void write_vtu_raw(const BasicVtuPiece<float> &, const std::string &);
+  template void write_vtu_raw(const BasicVtuPiece<double> &, const std::string &);
+  template void write_pvtu_record(const BasicVtuPiece<float> &, const std::vector<std::string> &,
+                                  const std::string &);
+  template void write_pvtu_record(const BasicVtuPiece<double> &, const std::vector<std::string> &,
+                                  const std::string &);
 } // namespace anvil
