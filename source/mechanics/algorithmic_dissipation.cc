@@ -4,7 +4,10 @@
 #include <deal.II/fe/fe_values.h>
 
 #include <anvil/core/instantiate.h>
+#include <anvil/mechanics/assembly_mapping.h>
 #include <anvil/mechanics/mechanical_problem.h>
+
+#include <algorithm>
 
 namespace anvil
 {
@@ -52,14 +55,53 @@ namespace anvil
                 }
             }
       }
-    mx                 = 0;
+    mx = 0;
+    // The dof values and sums by the assembly's kept local indices (one
+    // look-up per dof and mesh), when x has the ghosted vectors' layout; a
+    // cell with a dof owned elsewhere adds through mx.add (compress below).
+    const Epetra_BlockMap &x_map     = x.trilinos_vector().Map();
+    const Epetra_BlockMap &ghost_map = solution.trilinos_vector().Map();
+    const Epetra_BlockMap &mx_map    = mx.trilinos_vector().Map();
+    const auto             same      = [](const Epetra_BlockMap &a, const Epetra_BlockMap &b) {
+      return a.DataPtr() == b.DataPtr() ||
+             (a.NumMyElements() == b.NumMyElements() &&
+              std::equal(a.MyGlobalElements(), a.MyGlobalElements() + a.NumMyElements(),
+                         b.MyGlobalElements()));
+    };
+    const bool by_index =
+      same(x_map, ghost_map) && same(mx_map, system_rhs.trilinos_vector().Map());
+    const double *const x_values  = x.trilinos_vector()[0];
+    double *const       mx_values = mx.begin();
+    if (by_index)
+      assembly_mapping->reserve_vector_indices(n);
     const double *mass = cell_masses.data();
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          cell->get_dof_indices(dofs);
-          for (unsigned int b = 0; b < n; ++b)
-            xa[b] = x(dofs[b]);
+          int *lids = nullptr, *owned = nullptr;
+          if (by_index)
+            {
+              lids  = assembly_mapping->vector_indices(cell->active_cell_index(), n);
+              owned = assembly_mapping->owned_vector_indices(cell->active_cell_index(), n);
+              if (lids[0] == -2 || owned[0] == -2)
+                {
+                  cell->get_dof_indices(dofs);
+                  for (unsigned int b = 0; b < n; ++b)
+                    {
+                      const auto gid = static_cast<TrilinosWrappers::types::int_type>(dofs[b]);
+                      lids[b]        = ghost_map.LID(gid);
+                      owned[b]       = mx_map.LID(gid);
+                    }
+                }
+              for (unsigned int b = 0; b < n; ++b)
+                xa[b] = x_values[lids[b]];
+            }
+          else
+            {
+              cell->get_dof_indices(dofs);
+              for (unsigned int b = 0; b < n; ++b)
+                xa[b] = x(dofs[b]);
+            }
           for (unsigned int a = 0; a < n; ++a, mass += n)
             {
               double sum = 0;
@@ -67,7 +109,17 @@ namespace anvil
                 sum += mass[b] * xa[b];
               local(a) = sum;
             }
-          mx.add(dofs, local);
+          const bool all_owned =
+            by_index && std::all_of(owned, owned + n, [](const int i) { return i >= 0; });
+          if (all_owned)
+            for (unsigned int a = 0; a < n; ++a)
+              mx_values[owned[a]] += local(a); // what mx.add does with an owned entry
+          else
+            {
+              if (by_index)
+                cell->get_dof_indices(dofs);
+              mx.add(dofs, local);
+            }
         }
     mx.compress(VectorOperation::add);
   }
@@ -101,15 +153,20 @@ namespace anvil
 
     // [r]·Δu on the free dofs (hanging nodes included: their residual is
     // condensed onto the masters, which Δu of both carries), M[a]·Δu on the supports.
-    double residual_work = 0, support_work = 0;
+    // (The owned vectors' k-th local entries are the k-th owned dof's.)
+    double              residual_work = 0, support_work = 0;
+    const double *const m_a = m_jump_a.begin(), *const u = du.begin();
+    const double *const f_int = internal_force.begin(), *const f_ext = external_force.begin();
+    const double *const r_old = static_residual_old.begin();
+    unsigned int        k     = 0;
     for (const auto i : locally_owned_dofs)
       {
         const auto *masters = constraints.get_constraint_entries(i);
         if (masters && masters->empty())
-          support_work += m_jump_a(i) * du(i);
+          support_work += m_a[k] * u[k];
         else
-          residual_work +=
-            (internal_force(i) - external_force(i) - static_residual_old(i)) * du(i);
+          residual_work += (f_int[k] - f_ext[k] - r_old[k]) * u[k];
+        ++k;
       }
     residual_work = Utilities::MPI::sum(residual_work, mpi_communicator);
     support_work  = Utilities::MPI::sum(support_work, mpi_communicator);

@@ -7,6 +7,7 @@
 
 #include <anvil/contact/contact_problem.h>
 #include <anvil/core/instantiate.h>
+#include <anvil/material/j2_plasticity.h>
 #include <anvil/mechanics/assembly_kernels.h>
 #include <anvil/mechanics/assembly_mapping.h>
 #include <anvil/mechanics/mechanical_problem.h>
@@ -384,27 +385,72 @@ namespace anvil
                              update_gradients | update_JxW_values |
                                (axisymmetric ? update_values | update_quadrature_points :
                                                update_default));
-    CopyData copy(fe.n_dofs_per_cell(), quadrature.size());
+    const unsigned int n_dofs_per_cell = fe.n_dofs_per_cell();
+    CopyData           copy(n_dofs_per_cell, quadrature.size());
+    // The dof values by local index, as the assembly reads them (its look-ups, kept per mesh).
+    const Epetra_BlockMap &vector_map   = solution.trilinos_vector().Map();
+    const double *const    u_values     = solution.trilinos_vector()[0];
+    const double *const    u_old_values = old_solution.trilinos_vector()[0];
+    const Epetra_BlockMap &old_map      = old_solution.trilinos_vector().Map();
+    AssertThrow(old_map.DataPtr() == vector_map.DataPtr() ||
+                  (old_map.NumMyElements() == vector_map.NumMyElements() &&
+                   std::equal(old_map.MyGlobalElements(),
+                              old_map.MyGlobalElements() + old_map.NumMyElements(),
+                              vector_map.MyGlobalElements())),
+                ExcInternalError());
+    assembly_mapping->reserve_vector_indices(n_dofs_per_cell);
+    const bool heat = static_cast<bool>(temperature_field);
     static_assert(n_audit_terms == 6, "step_audit holds every AuditTerm");
     step_audit.fill(0.);
+    // The state's elastic energy ∫ W dv, W = p²/2K(T) + s:s/4G(T), at the points'
+    // stresses and temperatures and J = det F of their u (doc/energy_audit.md):
+    // the stress balance's state route, from the stresses alone, not from the
+    // step's work sums; J and dV as audit() computed them at these points.
+    double elastic_energy = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
           scratch.reinit(cell, reference, formulation->component, formulation->f_bar, axisymmetric);
-          cell->get_dof_indices(copy.dof_indices);
-          for (unsigned int i = 0; i < copy.dof_indices.size(); ++i)
+          int *const lids = assembly_mapping->vector_indices(cell->active_cell_index(), n_dofs_per_cell);
+          if (lids[0] == -2)
             {
-              scratch.local_u[i]     = solution(copy.dof_indices[i]);
-              scratch.local_u_old[i] = old_solution(copy.dof_indices[i]);
+              cell->get_dof_indices(copy.dof_indices);
+              for (unsigned int i = 0; i < n_dofs_per_cell; ++i)
+                {
+                  lids[i] = vector_map.LID(
+                    static_cast<TrilinosWrappers::types::int_type>(copy.dof_indices[i]));
+                  AssertThrow(lids[i] >= 0, ExcInternalError());
+                }
+            }
+          for (unsigned int i = 0; i < n_dofs_per_cell; ++i)
+            {
+              scratch.local_u[i]     = u_values[lids[i]];
+              scratch.local_u_old[i] = u_old_values[lids[i]];
             }
           material_update.audit(cell, scratch, copy);
           for (const auto &terms : copy.audit)
             for (unsigned int k = 0; k < terms.size(); ++k)
               step_audit[k] += terms[k];
+
+          const auto &m  = *materials.at(cell->material_id());
+          const auto *j2 = dynamic_cast<const J2Model *>(&m);
+          for (unsigned int q = 0; q < scratch.points.size(); ++q)
+            {
+              const PointValues &p     = scratch.points[q];
+              const double       T     = heat ? material_temperature(cell, q) : parameters.temperature;
+              const double       K     = j2 ? j2->elastic.bulk_modulus(T) : m.bulk_modulus();
+              const double       G     = j2 ? j2->elastic.shear_modulus(T) : m.shear_modulus();
+              const auto        &sigma = points(cell, q)->stress();
+              const double       pr    = trace(sigma) / 3;
+              const auto         s     = deviator(sigma);
+              elastic_energy += 0.5 * (pr * pr / K + (s * s) / (2 * G)) * p.J * p.w;
+            }
         }
     std::vector<double> sums(step_audit.begin(), step_audit.end());
+    sums.push_back(elastic_energy);
     Utilities::MPI::sum(sums, mpi_communicator, sums);
-    std::copy(sums.begin(), sums.end(), step_audit.begin());
+    std::copy(sums.begin(), sums.begin() + step_audit.size(), step_audit.begin());
+    energy_audit.elastic_energy = sums.back();
   }
 
 #define INSTANTIATE(dim)                                                                         \

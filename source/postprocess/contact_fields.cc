@@ -1,6 +1,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <anvil/postprocess/field_output.h>
+#include <anvil/postprocess/vtu_writer.h>
 
 #include <fstream>
 #include <iomanip>
@@ -36,22 +37,50 @@ namespace anvil
           local.insert(local.end(), {o.pressure, o.gap, o.slip, double(o.status),
                                      o.friction_power, o.conductance, o.heat_flux, double(o.pair)});
         }
-      const auto parts = Utilities::MPI::all_gather(s.communicator, local);
       const std::string name = "contact_" + Utilities::int_to_string(s.step, 5) + ".vtu";
-      if (s.is_root())
+      if (Utilities::MPI::n_mpi_processes(s.communicator) == 1)
+        write_vtu(s.output_directory + "/fields/" + name, local, this->schedule.raw_vtu());
+      else
         {
-          std::vector<double> all;
-          for (const auto &part : parts)
-            all.insert(all.end(), part.begin(), part.end());
-          write_vtu(s.output_directory + "/fields/" + name, all);
+          const auto parts = Utilities::MPI::all_gather(s.communicator, local);
+          if (s.is_root())
+            {
+              std::vector<double> all;
+              for (const auto &part : parts)
+                all.insert(all.end(), part.begin(), part.end());
+              write_vtu(s.output_directory + "/fields/" + name, all, this->schedule.raw_vtu());
+            }
         }
       this->schedule.record(s.time, "fields/" + name, s.output_directory + "/contact.pvd", s.is_root());
     }
 
-    static void write_vtu(const std::string &filename, const std::vector<double> &all)
+    static void write_vtu(const std::string &filename, const std::vector<double> &all,
+                          const bool raw)
     {
       const unsigned int width = 3 + n_fields, n = all.size() / width;
-      std::ofstream      vtu(filename);
+      const char *names[n_fields] = {"contact_pressure", "gap", "slip", "status",
+                                     "frictional_power", "conductance", "contact_heat_flux",
+                                     "pair"};
+      if (raw)
+        {
+          // Float64 like the ascii file's 10 digits (a gap of 1e-6 mm matters).
+          BasicVtuPiece<double> piece;
+          piece.point_data.resize(n_fields);
+          for (unsigned int f = 0; f < n_fields; ++f)
+            piece.point_data[f].name = names[f];
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              piece.points.insert(piece.points.end(), &all[i * width], &all[i * width + 3]);
+              for (unsigned int f = 0; f < n_fields; ++f)
+                piece.point_data[f].values.push_back(all[i * width + 3 + f]);
+              piece.connectivity.push_back(static_cast<std::int32_t>(i));
+              piece.offsets.push_back(static_cast<std::int32_t>(i + 1));
+              piece.types.push_back(1); // VTK_VERTEX
+            }
+          write_vtu_raw(piece, filename);
+          return;
+        }
+      std::ofstream vtu(filename);
       vtu << std::setprecision(10)
           << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n"
           << "<UnstructuredGrid><Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n
@@ -70,9 +99,6 @@ namespace anvil
       for (unsigned int i = 0; i < n; ++i)
         vtu << "1 "; // VTK_VERTEX
       vtu << "\n</DataArray>\n</Cells>\n<PointData>\n";
-      const char *names[n_fields] = {"contact_pressure", "gap", "slip", "status",
-                                     "frictional_power", "conductance", "contact_heat_flux",
-                                     "pair"};
       for (unsigned int f = 0; f < n_fields; ++f)
         {
           vtu << "<DataArray type=\"Float64\" Name=\"" << names[f] << "\" format=\"ascii\">\n";

@@ -3,8 +3,12 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/numerics/data_out.h>
+#include <deal.II/base/geometry_info.h>
 
 #include <anvil/postprocess/field_output.h>
+#include <anvil/postprocess/vtu_writer.h>
+
+#include <algorithm>
 
 namespace anvil
 {
@@ -40,6 +44,8 @@ namespace anvil
     {
       const auto  *mechanical = s.physics.mechanics();
       const auto  *thermal    = s.physics.heat();
+      if (mechanical && this->schedule.raw_vtu())
+        return write_raw(s);
       DataOut<dim> data_out;
       Vector<double> prescribed_temperature;
       if (mechanical)
@@ -90,6 +96,140 @@ namespace anvil
     }
 
     typename MechanicalProblem<dim>::CellFields cell_fields; // alive while data_out writes
+
+    // Output/VTU encoding = raw: the arrays DataOut would write, each cell a
+    // patch of its own vertices (n_subdivisions 1: a vertex's value is its
+    // vertex dof's, a cell value at each of its vertices), in DataOut's order
+    // (dof data, then cell data) and types (Float32), without building
+    // patches: the points, cells and vertex dofs depend on the mesh only and
+    // are kept while it is the same.
+    const Triangulation<dim>            *raw_mesh  = nullptr;
+    unsigned int                         raw_cells = 0;
+    VtuPiece                             piece;
+    std::vector<unsigned int>            cell_index;   // per piece cell, its active cell index
+    std::vector<types::global_dof_index> vertex_dofs;  // per piece point, the dim displacement dofs
+    std::vector<types::global_dof_index> heat_dofs;    // per piece point (heat field)
+    std::vector<types::global_dof_index> nodal_vertex; // per piece point (nodal_dofs)
+
+    void prepare_raw(const SimulationState<dim> &s)
+    {
+      const auto *mechanical = s.physics.mechanics();
+      const auto *thermal    = s.physics.heat();
+      if (raw_mesh == &s.triangulation && raw_cells == s.triangulation.n_active_cells() &&
+          heat_dofs.empty() == !thermal)
+        return;
+      constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
+      // deal.II numbers a cell's vertices lexicographically; VTK goes around.
+      const unsigned int vtk_order[8] = {0, 1, 3, 2, 4, 5, 7, 6};
+      piece = VtuPiece();
+      cell_index.clear();
+      vertex_dofs.clear();
+      heat_dofs.clear();
+      nodal_vertex.clear();
+      for (const auto &cell : mechanical->get_dof_handler().active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            const auto first = static_cast<std::int32_t>(piece.n_points());
+            for (unsigned int v = 0; v < n_vertices; ++v)
+              {
+                for (unsigned int d = 0; d < 3; ++d)
+                  piece.points.push_back(d < dim ? static_cast<float>(cell->vertex(v)[d]) : 0.f);
+                for (unsigned int c = 0; c < dim; ++c)
+                  vertex_dofs.push_back(cell->vertex_dof_index(v, c));
+                nodal_vertex.push_back(
+                  typename DoFHandler<dim>::active_cell_iterator(&s.triangulation, cell->level(),
+                                                                 cell->index(), &nodal_dofs)
+                    ->vertex_dof_index(v, 0));
+                if (thermal)
+                  heat_dofs.push_back(typename DoFHandler<dim>::active_cell_iterator(
+                                        &s.triangulation, cell->level(), cell->index(),
+                                        &thermal->get_dof_handler())
+                                        ->vertex_dof_index(v, 0));
+                piece.connectivity.push_back(first + static_cast<std::int32_t>(vtk_order[v]));
+              }
+            piece.offsets.push_back(static_cast<std::int32_t>(piece.connectivity.size()));
+            piece.types.push_back(dim == 2 ? 9 : 12); // VTK_QUAD, VTK_HEXAHEDRON
+            cell_index.push_back(cell->active_cell_index());
+          }
+      raw_mesh  = &s.triangulation;
+      raw_cells = s.triangulation.n_active_cells();
+    }
+
+    /// An array of @p components values per point from the ghosted vector
+    /// @p v at @p dofs (components per point).
+    void add_dof_array(const std::string &name, const TrilinosWrappers::MPI::Vector &v,
+                       const std::vector<types::global_dof_index> &dofs,
+                       const unsigned int components, const unsigned int width)
+    {
+      auto &a      = piece.point_data.emplace_back();
+      a.name       = name;
+      a.components = width;
+      a.values.assign(piece.n_points() * width, 0.f);
+      const Epetra_BlockMap &map    = v.trilinos_vector().Map();
+      const double *const    values = v.trilinos_vector()[0];
+      for (std::size_t p = 0; p < piece.n_points(); ++p)
+        for (unsigned int c = 0; c < components; ++c)
+          {
+            const int lid = map.LID(static_cast<TrilinosWrappers::types::int_type>(dofs[p * components + c]));
+            AssertThrow(lid >= 0, ExcMessage("Fields: a vertex value is not on this process"));
+            a.values[p * width + c] = static_cast<float>(values[lid]);
+          }
+    }
+
+    /// A cell array: each cell's value at each of its vertices.
+    template <typename VectorType>
+    void add_cell_array(const std::string &name, const VectorType &cell_values)
+    {
+      constexpr unsigned int n_vertices = GeometryInfo<dim>::vertices_per_cell;
+      auto                  &a          = piece.point_data.emplace_back();
+      a.name                            = name;
+      a.values.resize(piece.n_points());
+      for (std::size_t c = 0; c < cell_index.size(); ++c)
+        std::fill_n(a.values.begin() + c * n_vertices, n_vertices,
+                    static_cast<float>(cell_values[cell_index[c]]));
+    }
+
+    void write_raw(const SimulationState<dim> &s)
+    {
+      const auto *mechanical = s.physics.mechanics();
+      const auto *thermal    = s.physics.heat();
+      cell_fields            = mechanical->cell_fields();
+      recover(s, cell_fields); // before prepare_raw: it makes nodal_dofs
+      prepare_raw(s);
+      piece.point_data.clear();
+      add_dof_array("displacement", mechanical->displacement(), vertex_dofs, dim, 3);
+      if (mechanical->is_dynamic())
+        add_dof_array("velocity", mechanical->velocity(), vertex_dofs, dim, 3);
+      if (thermal)
+        add_dof_array("temperature", thermal->temperature(), heat_dofs, 1, 1);
+      for (unsigned int i = 0; i < nodal_names.size(); ++i)
+        add_dof_array(nodal_names[i], nodal_values[i], nodal_vertex, 1, 1);
+      if (!thermal && s.physics.has_temperature())
+        add_cell_array("temperature", s.physics.cell_temperature());
+      for (unsigned int i = 0; i < cell_fields.names.size(); ++i)
+        add_cell_array(cell_fields.names[i], cell_fields.values[i]);
+      add_cell_array("rank", std::vector<float>(s.triangulation.n_active_cells(),
+                                                Utilities::MPI::this_mpi_process(s.communicator)));
+
+      // The names write_vtu_with_pvtu_record gives (one file per process).
+      const unsigned int n_ranks = Utilities::MPI::n_mpi_processes(s.communicator);
+      const unsigned int digits  = Utilities::needed_digits(n_ranks - 1);
+      const std::string  stem    = "solution_" + Utilities::int_to_string(s.step, 5);
+      const auto piece_name      = [&](const unsigned int r) {
+        return stem + "." + Utilities::int_to_string(r, digits) + ".vtu";
+      };
+      write_vtu_raw(piece, s.output_directory + "/fields/" +
+                             piece_name(Utilities::MPI::this_mpi_process(s.communicator)));
+      if (s.is_root())
+        {
+          std::vector<std::string> pieces;
+          for (unsigned int r = 0; r < n_ranks; ++r)
+            pieces.push_back(piece_name(r));
+          write_pvtu_record(piece, pieces, s.output_directory + "/fields/" + stem + ".pvtu");
+        }
+      this->schedule.record(s.time, "fields/" + stem + ".pvtu", s.output_directory + "/solution.pvd",
+                            s.is_root());
+    }
 
     // Nodal twins "<field>_nodal" of the cell fields (smooth pictures):
     // patch averaging, each vertex gets the volume-weighted mean of the cell

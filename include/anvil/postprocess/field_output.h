@@ -32,11 +32,15 @@ namespace anvil
     /// failure) and rewrites @p pvd on rank 0.
     void record(double time, const std::string &file, const std::string &pvd, bool root);
 
+    /// Output/VTU encoding = raw: arrays appended raw (vtu_writer.h), else deal.II's zlib.
+    bool raw_vtu() const { return raw; }
+
     void save(const std::string &key, std::map<std::string, std::string> &entries) const;
     void load(const std::string &key, const std::map<std::string, std::string> &entries);
 
   private:
     unsigned int                                interval = 1;
+    bool                                        raw      = true;
     std::vector<std::pair<double, std::string>> records;
   };
 
