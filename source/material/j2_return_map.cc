@@ -152,15 +152,15 @@ namespace anvil
       // Trial state: rotated σ_n plus H(T) : (Δε − βΔT I), eq. (9), (10), (19),
       // on the raw components (00, 11, 22, 01, 02, 12).
       double *trial = t.trial, *de = t.de, *s = t.s;
-      std::copy(rotated.trial, rotated.trial + 6, trial);
       const double *dstrain = inc.strain_increment.begin_raw();
       for (unsigned int c = 0; c < 6; ++c)
         de[c] = dstrain[c] - (c < 3 ? eth : 0.);
       const double tr_de   = de[0] + de[1] + de[2];
       const double mean_de = tr_de / 3;
       t.tr_de              = tr_de;
+      // σ̃ₙ + H : Δεᵉ in one pass (a copy first became a memmove call).
       for (unsigned int c = 0; c < 6; ++c)
-        trial[c] += c < 3 ? K * tr_de + 2 * G * (de[c] - mean_de) : 2 * G * de[c];
+        trial[c] = rotated.trial[c] + (c < 3 ? K * tr_de + 2 * G * (de[c] - mean_de) : 2 * G * de[c]);
       const double mean_trial = (trial[0] + trial[1] + trial[2]) / 3;
       for (unsigned int c = 0; c < 6; ++c) // dev(trial)
         s[c] = c < 3 ? trial[c] - mean_trial : trial[c];

@@ -38,47 +38,63 @@ namespace anvil
     // block and 1/2 on the shear diagonal, δ⊗δ ones in the normal block, and
     // I_sym 1, 1/2 on the diagonal.
 
-    /// C = K δ⊗δ + c_d I_dev (+ c_n n⊗n if @p with_n), raw storage.
+    /// C = K δ⊗δ + c_d I_dev (+ c_n n⊗n if @p with_n), raw storage. Row by
+    /// row, c_n n_p once per row and the entries in runs of three (the
+    /// compiler pairs them): each entry the sum it always was,
+    /// (K + c_d(δ_pq − ⅓)) + (c_n n_p) n_q, the zero bases of the shear block
+    /// added as before (0 + x is not x for x = −0).
     template <bool with_n>
     inline void fill_tangent(double *C, const double K, const double cd, const double cn,
                              const double *n)
     {
-      auto nn = [&](const unsigned int p, const unsigned int q) {
-        return with_n ? cn * n[p] * n[q] : 0.;
-      };
-      for (unsigned int p = 0; p < 3; ++p)
+      const double diag = K + cd * (1. - 1. / 3), off = K + cd * (0. - 1. / 3);
+#pragma GCC unroll 6
+      for (unsigned int p = 0; p < 6; ++p)
         {
-          for (unsigned int q = 0; q < 3; ++q)
-            C[6 * p + q] = K + cd * ((p == q ? 1. : 0.) - 1. / 3) + nn(p, q);
-          for (unsigned int q = 3; q < 6; ++q)
-            C[6 * p + q] = nn(p, q);
-        }
-      for (unsigned int p = 3; p < 6; ++p)
-        {
-          for (unsigned int q = 0; q < 3; ++q)
-            C[6 * p + q] = nn(p, q);
-          for (unsigned int q = 3; q < 6; ++q)
-            C[6 * p + q] = (p == q ? 0.5 * cd : 0.) + nn(p, q);
+          double      *row = C + 6 * p;
+          const double f   = with_n ? cn * n[p] : 0.;
+          if (p < 3)
+            {
+              for (unsigned int q = 0; q < 3; ++q)
+                row[q] = (p == q ? diag : off) + (with_n ? f * n[q] : 0.);
+              for (unsigned int q = 3; q < 6; ++q)
+                row[q] = with_n ? f * n[q] : 0.;
+            }
+          else
+            {
+              for (unsigned int q = 0; q < 3; ++q)
+                row[q] = with_n ? f * n[q] : 0.;
+              for (unsigned int q = 3; q < 6; ++q)
+                row[q] = (p == q ? 0.5 * cd : 0.) + (with_n ? f * n[q] : 0.);
+            }
         }
     }
 
-    /// S = I_sym − b n⊗n − a (I_dev − n⊗n) = I_sym − a I_dev + (a − b) n⊗n, raw storage.
+    /// S = I_sym − b n⊗n − a (I_dev − n⊗n) = I_sym − a I_dev + (a − b) n⊗n, raw
+    /// storage, row by row like fill_tangent().
     inline void fill_sensitivity(double *S, const double a, const double b, const double *n)
     {
-      const double c = a - b;
-      for (unsigned int p = 0; p < 3; ++p)
+      const double c    = a - b;
+      const double diag = 1. - a * (2. / 3), off = a * (1. / 3), shear = 0.5 * (1 - a);
+#pragma GCC unroll 6
+      for (unsigned int p = 0; p < 6; ++p)
         {
-          for (unsigned int q = 0; q < 3; ++q)
-            S[6 * p + q] = (p == q ? 1. - a * (2. / 3) : a * (1. / 3)) + c * n[p] * n[q];
-          for (unsigned int q = 3; q < 6; ++q)
-            S[6 * p + q] = c * n[p] * n[q];
-        }
-      for (unsigned int p = 3; p < 6; ++p)
-        {
-          for (unsigned int q = 0; q < 3; ++q)
-            S[6 * p + q] = c * n[p] * n[q];
-          for (unsigned int q = 3; q < 6; ++q)
-            S[6 * p + q] = (p == q ? 0.5 * (1 - a) : 0.) + c * n[p] * n[q];
+          double      *row = S + 6 * p;
+          const double f   = c * n[p];
+          if (p < 3)
+            {
+              for (unsigned int q = 0; q < 3; ++q)
+                row[q] = (p == q ? diag : off) + f * n[q];
+              for (unsigned int q = 3; q < 6; ++q)
+                row[q] = f * n[q];
+            }
+          else
+            {
+              for (unsigned int q = 0; q < 3; ++q)
+                row[q] = f * n[q];
+              for (unsigned int q = 3; q < 6; ++q)
+                row[q] = (p == q ? shear : 0.) + f * n[q];
+            }
         }
     }
   } // namespace

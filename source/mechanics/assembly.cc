@@ -47,6 +47,7 @@ namespace anvil
     c.thermoelastic_sources = &thermoelastic_sources;
     c.plastic_work_rates    = &plastic_work_rates;
     c.node_masses           = &node_masses;
+    c.step_start            = &step_start;
     c.material_temperature  = &material_temperature;
     c.material_temperature_old = &material_temperature_old;
     return c;

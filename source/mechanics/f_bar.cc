@@ -15,7 +15,7 @@ namespace anvil
     using namespace dealii;
 
     template <int dim>
-    void FBar<dim>::evaluate_centre(ScratchData<dim> &scratch) const
+    void FBar<dim>::evaluate_centre(ScratchData<dim> &scratch, const bool with_old) const
     {
       // Cell centre: J₀ and ∂J₀ for F-bar.
       const ReferenceCellValues &ref = scratch.cell;
@@ -23,10 +23,10 @@ namespace anvil
       const double         R0  = formulation.radius(ref, n_q);
       const Tensor<2, 3>   F0 =
         formulation.deformation_gradient(ref.centre_grad, ref.centre_value, scratch.local_u, R0);
-      const Tensor<2, 3> F0_old =
-        formulation.deformation_gradient(ref.centre_grad, ref.centre_value, scratch.local_u_old, R0);
+      if (with_old)
+        scratch.J0_old = formulation.active_det(formulation.deformation_gradient(
+          ref.centre_grad, ref.centre_value, scratch.local_u_old, R0));
       scratch.J0     = formulation.active_det(F0);
-      scratch.J0_old = formulation.active_det(F0_old);
       scratch.F0_inv = invert(F0);
       const Tensor<2, 3> &F0_inv = scratch.F0_inv;
       for (unsigned int b = 0; b < formulation.n_dofs; ++b)
@@ -42,6 +42,33 @@ namespace anvil
         }
     }
 
+    namespace
+    {
+      /// x^α with α = 1/2 (plane strain) or 1/3: sqrt or cbrt, not pow().
+      inline double f_bar_power(const bool plane_strain, const double x)
+      {
+        return plane_strain ? std::sqrt(x) : std::cbrt(x);
+      }
+    } // namespace
+
+    template <int dim>
+    Tensor<2, 3> FBar<dim>::material_gradient(const ScratchData<dim> &scratch,
+                                              const Tensor<2, 3>     &F,
+                                              double                 &beta) const
+    {
+      // F̄ = (J₀/J)^α F on the active block.
+      beta = f_bar_power(formulation.plane_strain, scratch.J0 / formulation.active_det(F));
+      return formulation.bar(F, beta);
+    }
+
+    template <int dim>
+    Tensor<2, 3> FBar<dim>::old_material_gradient(const ScratchData<dim> &scratch,
+                                                  const Tensor<2, 3>     &F_old) const
+    {
+      return formulation.bar(
+        F_old, f_bar_power(formulation.plane_strain, scratch.J0_old / formulation.active_det(F_old)));
+    }
+
     template <int dim>
     Tensor<2, 3> FBar<dim>::material_gradient(const ScratchData<dim> &scratch,
                                               const Tensor<2, 3>     &F,
@@ -49,14 +76,8 @@ namespace anvil
                                               double                 &beta,
                                               Tensor<2, 3>           &F_mat_old) const
     {
-      // F̄ = (J₀/J)^α F on the active block.
-      // x^α with α = 1/2 (plane strain) or 1/3: sqrt or cbrt, not pow().
-      const auto power = [this](const double x) {
-        return formulation.plane_strain ? std::sqrt(x) : std::cbrt(x);
-      };
-      beta      = power(scratch.J0 / formulation.active_det(F));
-      F_mat_old = formulation.bar(F_old, power(scratch.J0_old / formulation.active_det(F_old)));
-      return formulation.bar(F, beta);
+      F_mat_old = old_material_gradient(scratch, F_old);
+      return material_gradient(scratch, F, beta);
     }
 
     template <int dim>

@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <sstream>
 
 namespace anvil
@@ -25,6 +27,17 @@ namespace anvil
         const double p = trace(sigma) / 3;
         const auto   s = deviator(sigma);
         return 0.5 * p * p / K + (s * s) / (4 * G);
+      }
+
+      /// det F; of the form [2x2, 0; 0, F₃₃] (plane strain, axisymmetric)
+      /// by the nonzero terms of deal.II's cofactor sum, F₀₀(F₁₁F₂₂) −
+      /// F₀₁(F₁₀F₂₂): the others are exact zeros, so the bits are the same
+      /// (but for the sign of a zero result, which no > 0 test sees).
+      double point_determinant(const Tensor<2, 3> &F)
+      {
+        if (F[0][2] == 0 && F[1][2] == 0 && F[2][0] == 0 && F[2][1] == 0)
+          return F[0][0] * (F[1][1] * F[2][2]) - F[0][1] * (F[1][0] * F[2][2]);
+        return determinant(F);
       }
 
       /// σ̄ = ½(ΔR σ_n ΔRᵀ + σ_n+1): the step's stress on the configuration of
@@ -146,27 +159,51 @@ namespace anvil
       const Formulation<dim> &formulation = *context.formulation;
       const ReferenceCellValues    &ref         = scratch.cell;
       const bool              heat        = context.has_temperature_field();
+      // F_n and F̄_n: kept per cell for the step (StepStart), computed by the
+      // cell's first update of a step (the same operations: the same bits).
+      const std::vector<double> &u_old = scratch.local_u_old;
+      PointStart                *kept  = nullptr;
+      bool                       have_start = false;
+      if (context.step_start)
+        {
+          const auto key = context.step_start->u_old[cell];
+          kept           = context.step_start->points[cell].data();
+          have_start     = std::memcmp(key.data(), u_old.data(), key.size() * sizeof(double)) == 0;
+          if (!have_start)
+            key[0] = std::numeric_limits<double>::quiet_NaN(); // while the points are rewritten
+        }
       if (formulation.f_bar)
-        f_bar.evaluate_centre(scratch);
+        f_bar.evaluate_centre(scratch, !have_start);
       auto cell_points = (*context.points)[cell];
 
       MaterialIncrement    increment;
+      PointStart           start;
       for (unsigned int q = 0; q < scratch.points.size(); ++q)
         {
           PointValues       &p     = scratch.points[q];
           const double       R     = formulation.radius(ref, q);
           const Tensor<2, 3> F     = formulation.deformation_gradient(ref, q, scratch.local_u, R);
-          const Tensor<2, 3> F_old = formulation.deformation_gradient(ref, q, scratch.local_u_old, R);
-          const double J = determinant(F);
-          if (!(J > 0) || !(determinant(0.5 * (F + F_old)) > 0) || !(scratch.J0 > 0))
+          if (!have_start)
+            {
+              start.F_old     = formulation.deformation_gradient(ref, q, u_old, R);
+              start.F_mat_old = formulation.f_bar ? f_bar.old_material_gradient(scratch, start.F_old) :
+                                                    start.F_old;
+              if (kept)
+                kept[q] = start;
+            }
+          const PointStart  &s0    = have_start ? kept[q] : start;
+          const Tensor<2, 3> &F_old = s0.F_old;
+          const double J = point_determinant(F);
+          if (!(J > 0) || !(point_determinant(0.5 * (F + F_old)) > 0) || !(scratch.J0 > 0))
             {
               copy.failed = true; // an element inverted
               return false;
             }
           double       beta  = 1;
-          Tensor<2, 3> F_mat = F, F_mat_old = F_old; // what the material sees
+          Tensor<2, 3> F_mat = F; // what the material sees
+          const Tensor<2, 3> &F_mat_old = s0.F_mat_old;
           if (formulation.f_bar)
-            F_mat = f_bar.material_gradient(scratch, F, F_old, beta, F_mat_old);
+            F_mat = f_bar.material_gradient(scratch, F, beta);
           IncrementalKinematics &kin = p.kin;
           kin.reinit(F_mat, F_mat_old, formulation.objective_rate,
                      kinematics_planar_path | (context.with_matrix ? kinematics_tangent : kinematics_increment));
@@ -217,6 +254,10 @@ namespace anvil
             std::max(copy.max_plastic_increment,
                      response.equivalent_plastic_strain - point.committed_equivalent_plastic_strain());
         }
+      // Every point's F_n and F̄_n are kept: the key last (an update that
+      // failed part-way leaves it unset, and the next one computes them again).
+      if (kept && !have_start)
+        std::copy(u_old.begin(), u_old.end(), context.step_start->u_old[cell].begin());
       return true;
     }
 

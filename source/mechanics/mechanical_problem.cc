@@ -232,6 +232,7 @@ namespace anvil
     if (parameters.dynamic)
       node_masses.reinit(triangulation, formulation->n_nodes * formulation->n_nodes,
                          std::numeric_limits<double>::quiet_NaN());
+    step_start.reinit(triangulation, fe.n_dofs_per_cell(), n_q);
     material_temperature.reinit(triangulation, n_q, parameters.temperature);
     material_temperature_old = material_temperature;
     // One block of points per body (MaterialModel::create_points), handed

@@ -15,6 +15,7 @@
 #include <anvil/mechanics/boundary_conditions.h>
 #include <anvil/mechanics/element_formulation.h>
 #include <anvil/mechanics/reference_values.h>
+#include <anvil/mechanics/step_start.h>
 #include <anvil/material/kinematics.h>
 
 #include <array>
@@ -81,6 +82,8 @@ namespace anvil
       /// Dynamics: per cell its node mass m_ij = Σ ρ₀ N_i N_j w (n_nodes² entries,
       /// NaN until the first assembly computes it: ρ₀ dV is conserved).
       PointData<double>                         *node_masses              = nullptr;
+      /// The points' start-of-step kinematics per cell (null: computed at every update).
+      StepStart                                 *step_start               = nullptr;
 
       bool has_temperature_field() const { return temperature_field && *temperature_field; }
     };

@@ -44,14 +44,21 @@ namespace anvil
       explicit FBar(const Formulation<dim> &formulation)
         : formulation(formulation)
       {}
-      /// J₀ at t_n+1 and t_n, F₀⁻¹ and tr(F₀⁻¹ ∂F₀/∂u_a) at the cell centre.
-      void evaluate_centre(ScratchData<dim> &scratch) const;
+      /// J₀ at t_n+1 (and at t_n if @p with_old), F₀⁻¹ and tr(F₀⁻¹ ∂F₀/∂u_a) at the cell centre.
+      void evaluate_centre(ScratchData<dim> &scratch, bool with_old = true) const;
       /// β = (J₀/J)^α and F̄ (returned), with F̄_n of the old configuration in @p F_mat_old.
       dealii::Tensor<2, 3> material_gradient(const ScratchData<dim>     &scratch,
                                              const dealii::Tensor<2, 3> &F,
                                              const dealii::Tensor<2, 3> &F_old,
                                              double                     &beta,
                                              dealii::Tensor<2, 3>       &F_mat_old) const;
+      /// β = (J₀/J)^α and F̄ at t_n+1 only.
+      dealii::Tensor<2, 3> material_gradient(const ScratchData<dim>     &scratch,
+                                             const dealii::Tensor<2, 3> &F,
+                                             double                     &beta) const;
+      /// F̄_n = (J₀ₙ/J_n)^α F_n (evaluate_centre() with the old configuration).
+      dealii::Tensor<2, 3> old_material_gradient(const ScratchData<dim>     &scratch,
+                                                 const dealii::Tensor<2, 3> &F_old) const;
       /// δσ in the direction F̄ itself: Σ_d F̄_kL δσ_d.
       dealii::SymmetricTensor<2, 3>
       stress_along(const dealii::Tensor<2, 3>                        &F_mat,

@@ -20,6 +20,7 @@
 #include <anvil/material/objective_rates.h>
 #include <anvil/mechanics/boundary_conditions.h>
 #include <anvil/mechanics/linear_solver.h>
+#include <anvil/mechanics/step_start.h>
 
 #include <array>
 #include <functional>
@@ -402,6 +403,7 @@ namespace anvil
     PointData<double>                           thermoelastic_sources;
     PointData<double>                           plastic_work_rates; // Ẇirr per point, last assembly
     PointData<double>                           node_masses; // dynamics: per cell (Context::node_masses)
+    MechanicsAssembly::StepStart                step_start; // F_n, F̄_n per point (Context::step_start)
     TemperatureField                            temperature_field;
     bool                                        adiabatic_split = false;
     // The temperature each point ended its last update at (current and committed).
