@@ -25,6 +25,8 @@ The environment reaches every run: ANVIL_ML_PARAMETERS sets ML's parameters
 the isochoric linear fields to the near-null space, ANVIL_FINE_SMOOTHER=blocks
 smooths the fine level with anvil's aggregate-block Gauss-Seidel
 (ANVIL_BLOCK_SWEEPS sweeps per smoothing, default 2; doc/linear_solver.md),
+ANVIL_ISOCHORIC_MODES=1 with ANVIL_ML_PARAMETERS='smoother: sweeps:int=5' is
+session 14's AMG for plastic flow (3D <= 30 Krylov iterations per solve),
 ANVIL_COARSE_AGGREGATION=coupled aggregates ML's levels 1 and coarser across
 the processes (MIS; doc/performance.md, session 13). OMPI_MCA_mpi_yield_when_idle=1
 keeps a waiting rank from spinning when the machine is shared.

@@ -1,0 +1,226 @@
+// The mechanics' iterative solve: GMRES right-preconditioned by smoothed-
+// aggregation AMG (Trilinos ML) on the rigid-body modes, and the hierarchy
+// kept across solves (ReusedAMG). doc/linear_solver.md.
+#include <deal.II/base/utilities.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/solver_gmres.h>
+#include <deal.II/lac/vector_memory.h>
+#include <deal.II/lac/trilinos_precondition.h>
+
+#include <anvil/mechanics/linear_solver.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+DEAL_II_DISABLE_EXTRA_DIAGNOSTICS
+#include <Epetra_MultiVector.h>
+#include <Teuchos_ParameterList.hpp>
+DEAL_II_ENABLE_EXTRA_DIAGNOSTICS
+
+namespace anvil
+{
+  using namespace dealii;
+
+  namespace
+  {
+    std::string trimmed(const std::string &s)
+    {
+      const auto a = s.find_first_not_of(" \t"), b = s.find_last_not_of(" \t");
+      return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+    }
+  } // namespace
+
+  void apply_ml_overrides(Teuchos::ParameterList &list, const std::string &overrides)
+  {
+    std::istringstream entries(overrides);
+    for (std::string entry; std::getline(entries, entry, ';');)
+      {
+        entry = trimmed(entry);
+        if (entry.empty())
+          continue;
+        const auto eq = entry.find('=');
+        AssertThrow(eq != std::string::npos,
+                    ExcMessage("ML parameter override without '=': " + entry));
+        std::string       name  = trimmed(entry.substr(0, eq));
+        const std::string value = trimmed(entry.substr(eq + 1));
+        // "a/b/name": name in sublist b of sublist a (ML's "smoother: ifpack list").
+        Teuchos::ParameterList *target = &list;
+        for (auto slash = name.find('/'); slash != std::string::npos; slash = name.find('/'))
+          {
+            target = &target->sublist(trimmed(name.substr(0, slash)));
+            name   = name.substr(slash + 1);
+          }
+        // ML names contain ':' themselves: the type is a last ":int", ":double", ":bool".
+        std::string type  = "string";
+        const auto  colon = name.rfind(':');
+        if (colon != std::string::npos)
+          {
+            const std::string t = trimmed(name.substr(colon + 1));
+            if (t == "int" || t == "double" || t == "bool")
+              {
+                type = t;
+                name = trimmed(name.substr(0, colon));
+              }
+          }
+        if (type == "int")
+          target->set(name, std::stoi(value));
+        else if (type == "double")
+          target->set(name, std::stod(value));
+        else if (type == "bool")
+          target->set(name, value == "true" || value == "1");
+        else
+          target->set(name, value);
+      }
+  }
+
+  std::unique_ptr<TrilinosWrappers::PreconditionAMG>
+  build_amg(const TrilinosWrappers::SparseMatrix   &K,
+            const std::vector<std::vector<double>> &near_null_space,
+            const IterativeSolverSettings          &settings)
+  {
+    TrilinosWrappers::PreconditionAMG::AdditionalData data;
+    data.elliptic              = true; // smoothed aggregation, Chebyshev smoother
+    data.higher_order_elements = settings.higher_order;
+    // Chebyshev degree 2: degree 4 saves 25-30 % of the Krylov iterations
+    // but costs as much more per V-cycle (plastic F-bar, 3D 20^3: 61 vs 46
+    // iterations, 1.07 vs 1.17 s per solve; doc/linear_solver.md).
+    data.smoother_sweeps       = 2;
+    data.aggregation_threshold = 0.02;
+    Teuchos::ParameterList              list;
+    std::unique_ptr<Epetra_MultiVector> unused; // deal.II's boolean modes: none given
+    data.set_parameters(list, unused, K);
+
+    // ML reads the modes (copied into its hierarchy) during initialize().
+    const Epetra_Map  &map = K.trilinos_matrix().OperatorDomainMap();
+    Epetra_MultiVector modes(map, std::max<int>(1, near_null_space.size()));
+    for (unsigned int k = 0; k < near_null_space.size(); ++k)
+      {
+        AssertDimension(near_null_space[k].size(), static_cast<std::size_t>(map.NumMyElements()));
+        std::copy(near_null_space[k].begin(), near_null_space[k].end(), modes[k]);
+      }
+    if (!near_null_space.empty())
+      {
+        list.set("null space: type", "pre-computed");
+        list.set("null space: dimension", static_cast<int>(near_null_space.size()));
+        list.set("null space: vectors", modes.Values());
+      }
+    // Aggregate nodes, not dofs: a node's components move together in
+    // every mode, and splitting them would cut the modes apart.
+    list.set("PDE equations", static_cast<int>(settings.components));
+    // ML's default ("Uncoupled-MIS", which stays uncoupled here) aggregates
+    // each process's rows apart on every level: two bodies in contact on
+    // one process each (the contact strip) get aggregates of half the size
+    // from level 1 on, one more level and 12 % more operator complexity
+    // than on one process. ANVIL_COARSE_AGGREGATION=coupled aggregates the
+    // levels from 1 on across the processes (ML's MIS; level 0, where it
+    // would cost most, stays per process). Not the default: the strip keeps
+    // its Krylov count either way, its set-up gains nothing below ~10^5 DoFs,
+    // and the 3D plastic block at 20^3 needs 70.4 instead of 67.8 Krylov
+    // iterations per solve (doc/performance.md, session 13).
+    const char *coarse = std::getenv("ANVIL_COARSE_AGGREGATION");
+    if (coarse && std::string(coarse) == "coupled" && K.trilinos_matrix().Comm().NumProc() > 1)
+      {
+        list.set("aggregation: type", "MIS");
+        list.set("aggregation: type (level 0)", "Uncoupled");
+      }
+    if (settings.aggregate_blocks)
+      {
+        // ML's own sweep count does not reach a user smoother: the sweeps
+        // are AggregateBlockSmoother::sweeps.
+        list.set("smoother: type (level 0)", "user-defined");
+        list.set("smoother: user-defined function", &AggregateBlockSmoother::ml_smoother);
+        list.set("smoother: user-defined name", "aggregate-block Gauss-Seidel");
+        list.set("smoother: sweeps (level 0)", 1);
+      }
+    // Benchmarks try ML's other settings without rebuilding (doc/linear_solver.md).
+    if (const char *overrides = std::getenv("ANVIL_ML_PARAMETERS"))
+      apply_ml_overrides(list, overrides);
+    auto amg = std::make_unique<TrilinosWrappers::PreconditionAMG>();
+    amg->initialize(K, list);
+    return amg;
+  }
+
+  unsigned int solve_gmres(const TrilinosWrappers::SparseMatrix    &K,
+                           TrilinosWrappers::MPI::Vector           &x,
+                           const TrilinosWrappers::MPI::Vector     &b,
+                           const TrilinosWrappers::PreconditionAMG &amg,
+                           const IterativeSolverSettings           &settings)
+  {
+    SolverControl control(settings.max_iterations, settings.tolerance * b.l2_norm());
+    // Right preconditioning: the test is on the true residual |b − K x|
+    // (left preconditioning would test |P⁻¹(b − K x)|, in mm, against a
+    // tolerance in N). Restart 30: each Krylov vector costs 8 B per DoF.
+    SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
+      control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(30, true));
+    // deal.II's vector pool keeps the Krylov basis (~32 vectors, 256 B per
+    // DoF) after the solve, and the next AMG set-up, the run's memory peak,
+    // would sit on top of it: give it back (a few page faults per solve).
+    const auto release = [] { GrowingVectorMemory<TrilinosWrappers::MPI::Vector>::release_unused_memory(); };
+    try
+      {
+        gmres.solve(K, x, b, amg);
+      }
+    catch (...)
+      {
+        release();
+        throw;
+      }
+    release();
+    return control.last_step();
+  }
+
+  unsigned int ReusedAMG::solve(const TrilinosWrappers::SparseMatrix      &K,
+                                TrilinosWrappers::MPI::Vector             &x,
+                                const TrilinosWrappers::MPI::Vector       &b,
+                                const std::function<RigidBodyModes()>     &modes,
+                                const IterativeSolverSettings             &settings)
+  {
+    unsigned int stale = 0;
+    if (amg && matrix == &K && settings.rebuild_growth > 0)
+      {
+        // The kept hierarchy gets rebuild_growth times the iterations its
+        // first solve needed; if that is not enough, a fresh hierarchy
+        // continues from the iterate reached (nothing is thrown away but
+        // the set-up avoided).
+        IterativeSolverSettings capped = settings;
+        capped.max_iterations =
+          std::min<unsigned int>(settings.max_iterations,
+                                 std::ceil(settings.rebuild_growth * first_iterations));
+        try
+          {
+            const AggregateBlockSmoother::ActiveScope active(smoother.get());
+            return solve_gmres(K, x, b, *amg, capped);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            stale = e.last_step;
+          }
+      }
+    amg.reset(); // free the old hierarchy before building the new one
+    smoother.reset();
+    const RigidBodyModes    m     = modes();
+    IterativeSolverSettings built = settings;
+    if (!m.node_blocks)
+      built.components = 1;
+    amg    = build_amg(K, m.modes, built);
+    matrix = &K;
+    ++n_builds;
+    // After ML's set-up (the run's memory peak), so that the factors do not
+    // add to it; ML calls the smoother only when it is applied.
+    if (built.aggregate_blocks)
+      {
+        smoother = std::make_unique<AggregateBlockSmoother>(K.trilinos_matrix(), built.components);
+        // A symmetric sweep before and after the coarse correction: 3D 10^3
+        // 33.8 Krylov iterations per solve at Chebyshev 2's CPU; 4 sweeps
+        // 27.8 at 1.3 times the CPU (doc/linear_solver.md).
+        smoother->sweeps = 2;
+        if (const char *n = std::getenv("ANVIL_BLOCK_SWEEPS"))
+          smoother->sweeps = std::max(1, std::atoi(n));
+      }
+    const AggregateBlockSmoother::ActiveScope active(smoother.get());
+    first_iterations = std::max(1u, solve_gmres(K, x, b, *amg, settings));
+    return stale + first_iterations;
+  }
+} // namespace anvil
