@@ -83,10 +83,11 @@ namespace anvil
     TrilinosWrappers::PreconditionAMG::AdditionalData data;
     data.elliptic              = true; // smoothed aggregation, Chebyshev smoother
     data.higher_order_elements = settings.higher_order;
-    // Chebyshev degree 2: degree 4 saves 25-30 % of the Krylov iterations
-    // but costs as much more per V-cycle (plastic F-bar, 3D 20^3: 61 vs 46
-    // iterations, 1.07 vs 1.17 s per solve; doc/linear_solver.md).
-    data.smoother_sweeps       = 2;
+    // Chebyshev degree: 2 by default; 4 saves 25-30 % of the Krylov
+    // iterations on the rigid-body modes alone but costs as much more per
+    // V-cycle; with the isochoric modes as well degree 5 halves them
+    // (doc/linear_solver.md, session 14).
+    data.smoother_sweeps       = settings.smoother_degree;
     data.aggregation_threshold = 0.02;
     Teuchos::ParameterList              list;
     std::unique_ptr<Epetra_MultiVector> unused; // deal.II's boolean modes: none given

@@ -69,10 +69,12 @@ namespace anvil
     settings.max_iterations = parameters.linear_max_iterations;
     settings.higher_order   = parameters.polynomial_degree > 1;
     settings.rebuild_growth = parameters.amg_rebuild_growth;
+    settings.smoother_degree = parameters.amg_smoother_degree;
     settings.components     = dim; // when the nodes' rows are consecutive
     if (const char *s = std::getenv("ANVIL_FINE_SMOOTHER"))
       settings.aggregate_blocks = std::string(s) == "blocks";
-    const auto modes        = [&]() { return rigid_body_modes(mapping, dof_handler, &solution); };
+    const bool isochoric = parameters.amg_isochoric_modes;
+    const auto modes     = [&]() { return rigid_body_modes(mapping, dof_handler, &solution, isochoric); };
     return amg.solve(system_matrix, du, system_rhs, modes, settings);
   }
 

@@ -103,6 +103,17 @@ namespace anvil
                       "iterations and steps, giving the kept one g times the Krylov iterations of "
                       "its first solve before a fresh one continues (pays on elastic and contact "
                       "scenes, not on spreading plasticity: doc/linear_solver.md).");
+    prm.declare_entry("AMG smoother degree", "2", Patterns::Integer(1, 10),
+                      "Degree of the Chebyshev smoother on every level of the AMG hierarchy "
+                      "(pre and post). Higher degrees buy Krylov iterations at more work per "
+                      "V-cycle; with 'AMG isochoric modes' 5 halves the iterations of plastic "
+                      "F-bar flow (doc/linear_solver.md).");
+    prm.declare_entry("AMG isochoric modes", "false", Patterns::Bool(),
+                      "Add the linear isochoric fields u = G (x - c), G symmetric and traceless "
+                      "(2D: 2, 3D: 5), to the rigid-body modes AMG's coarse spaces are built on. "
+                      "They are the low-energy fields of nearly incompressible (plastic) tangents; "
+                      "they make the coarse levels denser (3D: 11 instead of 6 columns per "
+                      "aggregate; peak memory +30 %). doc/linear_solver.md.");
     prm.declare_entry("Direct solver limit", "measured", Patterns::Anything(),
                       "Number of DoFs up to which 'automatic' chooses the direct solver; measured: "
                       "where KLU and GMRES + AMG cost the same per Newton iteration on the plastic "
@@ -191,6 +202,8 @@ namespace anvil
     linear_tolerance      = prm.get_double("Tolerance");
     linear_max_iterations = prm.get_integer("Maximum iterations");
     amg_rebuild_growth    = prm.get_double("AMG rebuild growth");
+    amg_smoother_degree   = prm.get_integer("AMG smoother degree");
+    amg_isochoric_modes   = prm.get_bool("AMG isochoric modes");
     direct_solver         = prm.get("Direct solver");
     const std::string limit = prm.get("Direct solver limit");
     if (limit == "measured")

@@ -34,6 +34,11 @@ namespace anvil
    * still returned, the radial translation and the rotation being near-null
    * on aggregates far from the axis (their energy relative to the
    * aggregate's is O((h/r)²), doc/linear_solver.md).
+   *
+   * @p isochoric: append the linear isochoric fields u = G (x − c), G
+   * symmetric and traceless (2D two, 3D five): not null vectors, but the
+   * low-energy fields of a nearly incompressible (plastic F-bar) tangent,
+   * which the rigid motions miss (doc/linear_solver.md, session 14).
    */
   struct RigidBodyModes
   {
@@ -47,7 +52,8 @@ namespace anvil
   template <int dim>
   RigidBodyModes rigid_body_modes(const dealii::Mapping<dim>                  &mapping,
                                   const dealii::DoFHandler<dim>               &dof_handler,
-                                  const dealii::TrilinosWrappers::MPI::Vector *u);
+                                  const dealii::TrilinosWrappers::MPI::Vector *u,
+                                  bool isochoric = false);
 
   /**
    * DoFs up to which Mechanics/Linear solver/Type = automatic factorizes
@@ -71,6 +77,9 @@ namespace anvil
     double       tolerance      = 1e-8; // relative to |b|
     unsigned int max_iterations = 1000;
     bool         higher_order   = false; // Q2
+    /// Chebyshev degree of ML's smoother on every level (the fine level's
+    /// unless aggregate_blocks).
+    unsigned int smoother_degree = 2;
     unsigned int components     = 1;     // dofs per node, contiguous ("PDE equations")
     /// ReusedAMG: iterations allowed to a kept hierarchy, in units of its
     /// first solve's (0: a new hierarchy for every solve).

@@ -92,6 +92,8 @@ namespace anvil
       double       linear_tolerance             = 1e-10;
       unsigned int linear_max_iterations        = 1000;
       double       amg_rebuild_growth           = 0;
+      unsigned int amg_smoother_degree          = 2;     // Chebyshev degree
+      bool         amg_isochoric_modes          = false; // near-null space += u = G (x − c)
       unsigned int direct_solver_limit          = 200000;
       std::string  direct_solver                = "auto"; // auto | klu | band
 
