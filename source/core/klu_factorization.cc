@@ -159,7 +159,7 @@ namespace anvil
       return band_chosen = true;
     if (!reordered)
       return band_chosen;
-    const double band_entries = double(n) * (2 * band->lower_bandwidth() + band->upper_bandwidth() + 1);
+    const double band_entries = double(n) * (2 * band->lower_bandwidth() + band->upper_bandwidth() + 4);
     // KLU's estimate from an analysis alone (AMD's flop count), made anew
     // when the band's work has moved by half since: contact couplings (the
     // tube's folds) raise both, KLU's by less (2.3 → 6.2 M flops on the
@@ -182,7 +182,9 @@ namespace anvil
         trilinos_klu_free_symbolic(&symbolic, &common);
       }
     // The band if its instructions are fewer, and its storage is within a
-    // few times KLU's factors (or small anyway: 8 M entries). Instructions
+    // few times KLU's factors (or small anyway: 2 M entries, 16 MB; at 8 MB
+    // the folded tube's widest bands, 127–135, went to KLU at ~2 × the
+    // band's instructions: doc/linear_solver.md, session 14). Instructions
     // per factorisation and solve (callgrind on the tube unfolded and
     // folded and on two_blocks, doc/linear_solver.md): KLU's refactorisation
     // 5.5 per estimated flop (with pivoting ~10); the band ~2.5 per
@@ -194,7 +196,7 @@ namespace anvil
       band_work * band_instructions_per_multiply_add +
       double(n) * (band->lower_bandwidth() + band->upper_bandwidth()) * band_instructions_per_entry;
     band_chosen = band_instructions < klu_estimated_flops * klu_instructions_per_flop &&
-                  (band_entries <= 4 * direct->estimated_entries || band_entries <= (1 << 20));
+                  (band_entries <= 4 * direct->estimated_entries || band_entries <= (1 << 21));
     return band_chosen;
   }
 

@@ -399,6 +399,10 @@ namespace anvil
     dealii::IndexSet                            constraint_lines; // relevant + contact surface dofs
     /// The matrix and its sparsity: the cells' couplings and the contact's.
     void setup_matrix();
+    /// The cells' couplings (make_sparsity_pattern's columns of each locally
+    /// relevant row, in order), kept for setup_matrix() until the dofs or
+    /// the constraints change (emptied where they are made).
+    std::vector<std::vector<dealii::types::global_dof_index>> cell_pattern;
     /// Lines for contact-surface dofs that this process does not see but their owner constrains.
     void add_remote_constraints(dealii::AffineConstraints<double> &c) const;
     PointData<double>                           heat_sources; // per point, last assembly
