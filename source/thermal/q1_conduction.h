@@ -87,6 +87,34 @@ namespace anvil
             matrix(j, i) = matrix(i, j);
       }
 
+      /// What an FEValues of the Q1 mapping with JxW and quadrature points
+      /// gives on the cell with the (moved) vertices @p x, to round-off, from
+      /// the Jacobian and radius add_cell_matrix uses: at point q, JxW[q],
+      /// the ring weight 2πx₀ (1 unless @p axisymmetric) and the point
+      /// (dim doubles at points[q · dim]).
+      template <class Vertices>
+      void cell_weights(const Vertices &x, const bool axisymmetric, double *JxW, double *axis_weight,
+                        double *points) const
+      {
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            dealii::Tensor<2, dim> J;
+            for (unsigned int v = 0; v < n_vertices; ++v)
+              for (unsigned int a = 0; a < dim; ++a)
+                for (unsigned int b = 0; b < dim; ++b)
+                  J[a][b] += x[v][a] * gradient[q][v][b];
+            JxW[q] = dealii::determinant(J) * weights[q];
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                double c = 0;
+                for (unsigned int v = 0; v < n_vertices; ++v)
+                  c += value[q][v] * x[v][d];
+                points[q * dim + d] = c;
+              }
+            axis_weight[q] = axisymmetric ? 2 * dealii::numbers::PI * points[q * dim] : 1.;
+          }
+      }
+
     private:
       const unsigned int                                           n_q;
       const std::vector<double>                                    weights;
