@@ -85,7 +85,9 @@ namespace anvil
       table.row.assign(dofs.get_triangulation().n_active_cells(), -1);
       const Epetra_BlockMap &map = layout.trilinos_vector().Map();
       table.map                  = std::make_unique<Epetra_BlockMap>(map);
-      const FE_Q<dim>                      linear(1);
+      // FE_Q(1)'s shape functions are the Q1 mapping's (built once: its
+      // constructor costs ~0.4 M instructions, more than the table).
+      static const FE_Q<dim>               linear(1);
       const thermal::Q1Conduction<dim>     geometry(linear, quadrature);
       std::vector<types::global_dof_index> indices(n_dofs);
       std::array<Point<dim>, thermal::Q1Conduction<dim>::n_vertices> x;

@@ -319,16 +319,24 @@ namespace anvil
   template <int dim>
   bool ThermalProblem<dim>::covers(const std::vector<std::vector<types::global_dof_index>> &groups)
   {
-    bool covered = true;
+    // One look-up per group; the new ones join the known after the vote.
+    bool                                                  covered = true;
+    std::vector<const std::vector<types::global_dof_index> *> fresh;
     for (const auto &group : groups)
-      if (!covered_groups.count(group))
+      {
+        const auto known = covered_groups.lower_bound(group);
+        if (known != covered_groups.end() && *known == group)
+          continue;
+        fresh.push_back(&group);
         for (const auto i : group)
           if (locally_owned_dofs.is_element(i))
             for (const auto j : group)
               covered = covered && exchange_pattern.exists(i, j);
+      }
     covered = Utilities::MPI::min(covered ? 1 : 0, mpi_communicator) == 1;
     if (covered)
-      covered_groups.insert(groups.begin(), groups.end());
+      for (const auto *group : fresh)
+        covered_groups.insert(*group);
     return covered;
   }
 
