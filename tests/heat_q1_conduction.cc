@@ -8,7 +8,10 @@
 //     bilinear element's stiffness), and zero row sums (constants are in the
 //     kernel of K) on every distorted cell;
 //  3. axisymmetric: Σ_ij K_ij r_i r_j = k ∫ 2πr |∇r|² dv = k π (R_o² − R_i²) L
-//     for the radius r = x₀ (linear, so the Q1 interpolant is exact).
+//     for the radius r = x₀ (linear, so the Q1 interpolant is exact);
+//  4. the cell weights of the current configuration's table (cell_weights:
+//     JxW and the points) against the same FEValues (1e-14), and their
+//     volume Σ JxW 2πr = π (R_o² − R_i²) L on the ring.
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
@@ -23,6 +26,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <vector>
 
 using namespace dealii;
 
@@ -42,7 +46,7 @@ namespace
   /// row sum relative to the same.
   template <int dim>
   void compare(const Triangulation<dim> &tria, const bool axisymmetric, double &entry_error,
-               double &row_sum_error)
+               double &row_sum_error, double &weight_error)
   {
     FESystem<dim>   mechanics_fe(FE_Q<dim>(1), dim);
     DoFHandler<dim> mechanics(tria);
@@ -63,10 +67,19 @@ namespace
     const double                            k = 2.5;
     const unsigned int                      n = fe.n_dofs_per_cell();
     FullMatrix<double>                      a(n, n), b(n, n);
-    entry_error = row_sum_error = 0;
+    entry_error = row_sum_error = weight_error = 0;
+    std::vector<double> JxW(quadrature.size()), axis(quadrature.size()), points(quadrature.size() * dim);
     for (const auto &cell : heat.active_cell_iterators())
       {
         v.reinit(cell);
+        kernel.cell_weights(mapping.get_vertices(cell), axisymmetric, JxW.data(), axis.data(), points.data());
+        for (unsigned int q = 0; q < quadrature.size(); ++q)
+          {
+            weight_error = std::max(weight_error, std::abs(JxW[q] - v.JxW(q)) / v.JxW(q));
+            for (unsigned int d = 0; d < dim; ++d)
+              weight_error = std::max(weight_error, std::abs(points[q * dim + d] - v.quadrature_point(q)[d]) /
+                                                      v.quadrature_point(q).norm());
+          }
         a = 0;
         for (unsigned int q = 0; q < quadrature.size(); ++q)
           {
@@ -100,19 +113,21 @@ int main()
   {
     Triangulation<2> tria;
     GridGenerator::subdivided_hyper_rectangle(tria, {6, 8}, Point<2>(1, 0), Point<2>(3, 4));
-    double e, r;
-    compare<2>(tria, false, e, r);
+    double e, r, w;
+    compare<2>(tria, false, e, r, w);
+    check(w < 1e-14, "2D moved mesh: cell weights, max relative |JxW, x_q - FEValues'|", w, 0);
     check(e < 1e-14, "2D moved mesh: max |K - K_FEValues| / max |K|", e, 0);
     check(r < 1e-14, "2D moved mesh: max |row sum| / max |K|", r, 0);
-    compare<2>(tria, true, e, r);
+    compare<2>(tria, true, e, r, w);
     check(e < 1e-14, "2D axisymmetric moved mesh: max |K - K_FEValues| / max |K|", e, 0);
     check(r < 1e-14, "2D axisymmetric moved mesh: max |row sum| / max |K|", r, 0);
   }
   {
     Triangulation<3> tria;
     GridGenerator::subdivided_hyper_rectangle(tria, {3, 3, 4}, Point<3>(0, 0, 0), Point<3>(2, 2, 3));
-    double e, r;
-    compare<3>(tria, false, e, r);
+    double e, r, w;
+    compare<3>(tria, false, e, r, w);
+    check(w < 1e-14, "3D moved mesh: cell weights, max relative |JxW, x_q - FEValues'|", w, 0);
     check(e < 1e-14, "3D moved mesh: max |K - K_FEValues| / max |K|", e, 0);
     check(r < 1e-14, "3D moved mesh: max |row sum| / max |K|", r, 0);
   }
@@ -138,8 +153,10 @@ int main()
     GridGenerator::subdivided_hyper_rectangle(tria, {5, 4}, Point<2>(Ri, 0), Point<2>(Ro, L));
     const FE_Q<2>                         fe(1);
     const anvil::thermal::Q1Conduction<2> kernel(fe, QGauss<2>(2));
-    double                                sum = 0;
+    double                                sum = 0, volume = 0;
     FullMatrix<double>                    K(4, 4);
+    std::array<double, 4>                 JxW, axis;
+    std::array<double, 8>                 points;
     for (const auto &cell : tria.active_cell_iterators())
       {
         std::array<Point<2>, 4> x;
@@ -150,9 +167,14 @@ int main()
         for (unsigned int i = 0; i < 4; ++i)
           for (unsigned int j = 0; j < 4; ++j)
             sum += K(i, j) * x[i][0] * x[j][0];
+        kernel.cell_weights(x, true, JxW.data(), axis.data(), points.data());
+        for (unsigned int q = 0; q < 4; ++q)
+          volume += JxW[q] * axis[q];
       }
     const double expected = k * numbers::PI * (Ro * Ro - Ri * Ri) * L;
     check(std::abs(sum - expected) < 1e-13 * expected, "axisymmetric ring: sum K_ij r_i r_j", sum, expected);
+    const double ring = numbers::PI * (Ro * Ro - Ri * Ri) * L;
+    check(std::abs(volume - ring) < 1e-13 * ring, "axisymmetric ring: volume sum JxW 2 pi r", volume, ring);
   }
   std::printf("%s\n", failures ? "FAILED" : "all ok");
   return failures ? 1 : 0;

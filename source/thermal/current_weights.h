@@ -6,6 +6,8 @@
 // FEValues of the same mapping, quadrature and flags made on first need. The
 // moving mappings (MappingQ1Eulerian, MappingQEulerian) compute every cell
 // afresh (no cell similarity), so both give the same numbers bit for bit.
+// A Q1 mechanics' table (from the moved vertices) holds every owned cell:
+// the FEValues here is then never made.
 
 #include <deal.II/base/numbers.h>
 #include <deal.II/dofs/dof_handler.h>

@@ -54,11 +54,7 @@ namespace anvil
       {
         for (unsigned int q = 0; q < n_q; ++q)
           {
-            dealii::Tensor<2, dim> J;
-            for (unsigned int v = 0; v < n_vertices; ++v)
-              for (unsigned int a = 0; a < dim; ++a)
-                for (unsigned int b = 0; b < dim; ++b)
-                  J[a][b] += x[v][a] * gradient[q][v][b];
+            const dealii::Tensor<2, dim>       J       = jacobian(x, q);
             const double                       det     = dealii::determinant(J);
             const dealii::Tensor<2, dim>       inverse = dealii::invert(J);
             std::array<dealii::Tensor<1, dim>, n_vertices> g;
@@ -87,7 +83,42 @@ namespace anvil
             matrix(j, i) = matrix(i, j);
       }
 
+      /// What an FEValues of the Q1 mapping with JxW and quadrature points
+      /// gives on the cell with the (moved) vertices @p x, to round-off, from
+      /// the Jacobian and radius add_cell_matrix uses: at point q, JxW[q],
+      /// the ring weight 2πx₀ (1 unless @p axisymmetric) and the point
+      /// (dim doubles at points[q · dim]).
+      template <class Vertices>
+      void cell_weights(const Vertices &x, const bool axisymmetric, double *JxW, double *axis_weight,
+                        double *points) const
+      {
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            JxW[q] = dealii::determinant(jacobian(x, q)) * weights[q];
+            for (unsigned int d = 0; d < dim; ++d)
+              {
+                double c = 0;
+                for (unsigned int v = 0; v < n_vertices; ++v)
+                  c += value[q][v] * x[v][d];
+                points[q * dim + d] = c;
+              }
+            axis_weight[q] = axisymmetric ? 2 * dealii::numbers::PI * points[q * dim] : 1.;
+          }
+      }
+
     private:
+      /// J = Σ_v x_v ⊗ ∇̂N_v at point q (the Q1 mapping's Jacobian).
+      template <class Vertices>
+      dealii::Tensor<2, dim> jacobian(const Vertices &x, const unsigned int q) const
+      {
+        dealii::Tensor<2, dim> J;
+        for (unsigned int v = 0; v < n_vertices; ++v)
+          for (unsigned int a = 0; a < dim; ++a)
+            for (unsigned int b = 0; b < dim; ++b)
+              J[a][b] += x[v][a] * gradient[q][v][b];
+        return J;
+      }
+
       const unsigned int                                           n_q;
       const std::vector<double>                                    weights;
       std::vector<std::array<double, n_vertices>>                  value;

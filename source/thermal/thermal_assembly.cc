@@ -11,6 +11,7 @@
 // set before the loop), the materials, the mechanics' heat sources.
 //
 // The Dirichlet values, couplings and rates are in thermal_dirichlet.cc.
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/base/work_stream.h>
 #include <deal.II/fe/fe_values.h>
@@ -29,6 +30,7 @@
 #include "newton_factorisation.h"
 #include "owned_cells.h"
 #include "q1_conduction.h"
+#include "tangent_adder.h"
 
 #include <algorithm>
 #include <array>
@@ -39,6 +41,34 @@ namespace anvil
   using namespace dealii;
   using thermal::for_owned_cells;
 
+
+  namespace
+  {
+    /// K += k ∫ ∇φᵢ·∇φⱼ dv of every owned Q1 cell, in cell order (the sums
+    /// of the WorkStream copier in assemble()), from @p moved (by vertex
+    /// index; nullptr: the reference vertices).
+    template <int dim>
+    void add_q1_conduction(const DoFHandler<dim> &dofs, const std::map<types::material_id, ThermalMaterial> &materials,
+                           const std::vector<Point<dim>> *moved, const thermal::Q1Conduction<dim> &q1,
+                           const bool axisymmetric, thermal::TangentAdder &adder,
+                           const AffineConstraints<double> &hanging, TrilinosWrappers::SparseMatrix &tangent)
+    {
+      thermal::CopyData c(dofs.get_fe().n_dofs_per_cell());
+      std::array<Point<dim>, thermal::Q1Conduction<dim>::n_vertices> x;
+      for (const auto &cell : dofs.active_cell_iterators())
+        if (cell->is_locally_owned())
+          {
+            cell->get_dof_indices(c.dofs);
+            c.cell_index = cell->active_cell_index();
+            c.matrix     = 0;
+            for (unsigned int v = 0; v < x.size(); ++v)
+              x[v] = moved ? (*moved)[cell->vertex_index(v)] : cell->vertex(v);
+            q1.add_cell_matrix(x, materials.at(cell->material_id()).conductivity, axisymmetric, c.matrix);
+            if (!adder.add(c))
+              hanging.distribute_local_to_global(c.matrix, c.dofs, tangent);
+          }
+    }
+  } // namespace
 
   template <int dim>
   void ThermalProblem<dim>::assemble_mass()
@@ -316,161 +346,108 @@ namespace anvil
         if (f)
           f->set_time(t);
 
-    const thermal::ScratchData<dim> scratch(
-      get_mapping(), reference_mapping, fe, quadrature, face_quadrature,
-      update_values | update_gradients | update_JxW_values | update_quadrature_points,
-      coupling ? update_JxW_values | update_quadrature_points : update_default,
-      update_values | update_JxW_values | update_quadrature_points);
     const bool axi = parameters.axisymmetric;
-    const FunctionParser<dim> *expression = source_function.get();
-
     // The linear tangent of Q1 on a Q1 mapping (the reference one or
     // MappingQ1Eulerian): the cells from their moved vertices, no FEValues.
     std::unique_ptr<thermal::Q1Conduction<dim>> q1;
     const bool moved = current_mapping != nullptr;
     if (tangent_of_linear && fe.degree == 1 && (!moved || !moved_vertices.empty()))
       q1 = std::make_unique<thermal::Q1Conduction<dim>>(fe, quadrature);
+    std::unique_ptr<thermal::TangentAdder> adder;
+    if (tangent)
+      adder = std::make_unique<thermal::TangentAdder>(*tangent, tangent_positions, tangent_positions_values,
+                                                      triangulation.n_active_cells(),
+                                                      fe.n_dofs_per_cell(), hanging);
+    // No face has a tangent (no convection; radiation is not linear) and one
+    // thread: a plain loop, without WorkStream's scratch (FEValues nobody
+    // reads: ~40 % of the loop on two_blocks) and its std::function calls.
+    if (q1 && !has_convection && MultithreadInfo::n_threads() == 1)
+      add_q1_conduction<dim>(dof_handler, materials, moved ? &moved_vertices : nullptr, *q1, axi, *adder,
+                             hanging, *tangent);
+    else
+      {
+        const thermal::ScratchData<dim> scratch(
+          get_mapping(), reference_mapping, fe, quadrature, face_quadrature,
+          update_values | update_gradients | update_JxW_values | update_quadrature_points,
+          coupling ? update_JxW_values | update_quadrature_points : update_default,
+          update_values | update_JxW_values | update_quadrature_points);
+        const FunctionParser<dim> *expression = source_function.get();
 
-    auto worker = [&](const CellIterator &cell, thermal::ScratchData<dim> &s, thermal::CopyData &c) {
-      const auto &m = materials.at(cell->material_id());
-      if (q1 && m.dk_dT() == 0)
-        {
-          cell->get_dof_indices(c.dofs);
+        auto worker = [&](const CellIterator &cell, thermal::ScratchData<dim> &s, thermal::CopyData &c) {
+          const auto &m = materials.at(cell->material_id());
+          if (q1 && m.dk_dT() == 0)
+            {
+              cell->get_dof_indices(c.dofs);
+              c.cell_index = cell->active_cell_index();
+              c.matrix     = 0;
+              std::array<Point<dim>, thermal::Q1Conduction<dim>::n_vertices> x;
+              for (unsigned int v = 0; v < x.size(); ++v)
+                x[v] = moved ? moved_vertices[cell->vertex_index(v)] : cell->vertex(v);
+              q1->add_cell_matrix(x, m.conductivity, axi, c.matrix);
+              // Only convection and radiation have a tangent on a face.
+              for (const unsigned int f : cell->face_indices())
+                if (cell->face(f)->at_boundary())
+                  {
+                    const auto bc = boundary_conditions.boundaries.find(cell->face(f)->boundary_id());
+                    if (bc != boundary_conditions.boundaries.end() && !bc->second.temperature &&
+                        (bc->second.h || bc->second.emissivity))
+                      thermal::boundary_face<dim>(s, cell, f, bc->second, &T, axi, true, c);
+                  }
+              return;
+            }
           c.cell_index = cell->active_cell_index();
-          c.matrix     = 0;
-          std::array<Point<dim>, thermal::Q1Conduction<dim>::n_vertices> x;
-          for (unsigned int v = 0; v < x.size(); ++v)
-            x[v] = moved ? moved_vertices[cell->vertex_index(v)] : cell->vertex(v);
-          q1->add_cell_matrix(x, m.conductivity, axi, c.matrix);
-          // Only convection and radiation have a tangent on a face.
+          s.fe_values.reinit(cell);
+          if (coupling)
+            s.fe_reference.reinit(cell);
+          cell->get_dof_indices(c.dofs);
+          if (!tangent_of_linear)
+            {
+              s.fe_values.get_function_values(T, s.T);
+              s.fe_values.get_function_gradients(T, s.grad_T);
+            }
+          thermal::fill_weights<dim>(s.fe_values, axi, s.weight);
+          c.matrix = 0;
+          c.vector = 0;
+          bool any_g_dot = false;
+          if (coupling)
+            for (unsigned int j = 0; j < c.dofs.size(); ++j)
+              {
+                const auto it = g_dot.find(c.dofs[j]);
+                s.g_dot(j)    = it == g_dot.end() ? 0. : it->second;
+                any_g_dot     = any_g_dot || s.g_dot(j) != 0;
+              }
+          if (rhs)
+            {
+              thermal::VolumeSource::cell_rates<dim>(s, cell, expression, &heat_source,
+                                                     any_g_dot ? m.density * m.heat_capacity : 0., axi);
+              thermal::volume_residual(s, m, c);
+            }
+          if (tangent)
+            thermal::Conduction::cell_tangent(s, m, c);
           for (const unsigned int f : cell->face_indices())
             if (cell->face(f)->at_boundary())
               {
                 const auto bc = boundary_conditions.boundaries.find(cell->face(f)->boundary_id());
-                if (bc != boundary_conditions.boundaries.end() && !bc->second.temperature &&
-                    (bc->second.h || bc->second.emissivity))
-                  thermal::boundary_face<dim>(s, cell, f, bc->second, &T, axi, true, c);
+                if (bc == boundary_conditions.boundaries.end() || bc->second.temperature)
+                  continue;
+                thermal::boundary_face<dim>(s, cell, f, bc->second, &T, axi, tangent != nullptr, c);
               }
-          return;
-        }
-      c.cell_index = cell->active_cell_index();
-      s.fe_values.reinit(cell);
-      if (coupling)
-        s.fe_reference.reinit(cell);
-      cell->get_dof_indices(c.dofs);
-      if (!tangent_of_linear)
-        {
-          s.fe_values.get_function_values(T, s.T);
-          s.fe_values.get_function_gradients(T, s.grad_T);
-        }
-      thermal::fill_weights<dim>(s.fe_values, axi, s.weight);
-      c.matrix = 0;
-      c.vector = 0;
-      bool any_g_dot = false;
-      if (coupling)
-        for (unsigned int j = 0; j < c.dofs.size(); ++j)
-          {
-            const auto it = g_dot.find(c.dofs[j]);
-            s.g_dot(j)    = it == g_dot.end() ? 0. : it->second;
-            any_g_dot     = any_g_dot || s.g_dot(j) != 0;
-          }
-      if (rhs)
-        {
-          thermal::VolumeSource::cell_rates<dim>(s, cell, expression, &heat_source,
-                                                 any_g_dot ? m.density * m.heat_capacity : 0., axi);
-          thermal::volume_residual(s, m, c);
-        }
-      if (tangent)
-        thermal::Conduction::cell_tangent(s, m, c);
-      for (const unsigned int f : cell->face_indices())
-        if (cell->face(f)->at_boundary())
-          {
-            const auto bc = boundary_conditions.boundaries.find(cell->face(f)->boundary_id());
-            if (bc == boundary_conditions.boundaries.end() || bc->second.temperature)
-              continue;
-            thermal::boundary_face<dim>(s, cell, f, bc->second, &T, axi, tangent != nullptr, c);
-          }
-    };
-    // A cell without hanging dofs whose rows are all owned adds its matrix by
-    // local row and column numbers, looked up once per dof (Epetra's
-    // SumIntoGlobalValues, what AffineConstraints calls, looks up every column
-    // of every row): the same one addition per entry, in cell order (as the
-    // mechanics' copier, source/mechanics/assembly.cc).
-    // Further, such a cell's entries are found in Epetra's CRS value array
-    // once per pattern (tangent_positions) and added there: no row search.
-    const unsigned int n_dofs = fe.n_dofs_per_cell();
-    std::vector<int>   local_rows(n_dofs), local_cols(n_dofs);
-    int               *row_start = nullptr, *row_columns = nullptr;
-    double            *values    = nullptr;
-    if (tangent)
-      {
-        auto &matrix = const_cast<Epetra_CrsMatrix &>(tangent->trilinos_matrix());
-        if (matrix.ExtractCrsDataPointers(row_start, row_columns, values) != 0)
-          values = nullptr;
-        // A new pattern's value array may come back at a freed one's
-        // address: the reinit sites also forget the positions.
-        if (values && (values != tangent_positions_values ||
-                       tangent_positions.size() != triangulation.n_active_cells() * n_dofs * n_dofs))
-          {
-            tangent_positions.assign(triangulation.n_active_cells() * n_dofs * n_dofs, -1);
-            tangent_positions_values = values;
-          }
+        };
+        auto copier = [&](const thermal::CopyData &c) {
+          if (rhs)
+            constraints.distribute_local_to_global(c.vector, c.dofs, *rhs);
+          // The tangent keeps the columns of the Dirichlet dofs: f at a free dof
+          // depends on the iterate's boundary values (K_IB y_B), and a stage's
+          // Newton step moves those values when the boundary temperature changes
+          // in time. Condensing them out (as `constraints` would) drops −γ K_IB δy_B
+          // and, where ARKode takes one Newton step (a linear problem), leaves an
+          // error ~ γ K_IB Δg: 646 K instead of <= 393 K on a strip heated from
+          // 293 K at 100 K/s (tests/heat_dirichlet_ramp.py).
+          if (tangent && !adder->add(c))
+            hanging.distribute_local_to_global(c.matrix, c.dofs, *tangent);
+        };
+        for_owned_cells(dof_handler, worker, copier, scratch);
       }
-    auto add_by_local_indices = [&](const thermal::CopyData &c) {
-      auto &matrix = const_cast<Epetra_CrsMatrix &>(tangent->trilinos_matrix());
-      int  *positions = values ? &tangent_positions[std::size_t(c.cell_index) * n_dofs * n_dofs] : nullptr;
-      if (positions && positions[0] >= 0)
-        {
-          for (unsigned int k = 0; k < n_dofs * n_dofs; ++k)
-            values[positions[k]] += c.matrix(k / n_dofs, k % n_dofs);
-          return true;
-        }
-      if (positions && positions[0] == -2)
-        return false;
-      for (unsigned int i = 0; i < c.dofs.size(); ++i)
-        {
-          const auto g  = static_cast<TrilinosWrappers::types::int_type>(c.dofs[i]);
-          local_rows[i] = matrix.LRID(g);
-          local_cols[i] = matrix.LCID(g);
-          if (hanging.is_constrained(c.dofs[i]) || local_rows[i] < 0 || local_cols[i] < 0)
-            {
-              if (positions)
-                positions[0] = -2;
-              return false;
-            }
-        }
-      if (positions)
-        for (unsigned int i = 0; i < n_dofs; ++i)
-          for (unsigned int j = 0; j < n_dofs; ++j)
-            {
-              const int *begin = row_columns + row_start[local_rows[i]],
-                        *end   = row_columns + row_start[local_rows[i] + 1];
-              const int *found = std::find(begin, end, local_cols[j]);
-              AssertThrow(found != end, ExcMessage("a cell's entry is not in the heat tangent's pattern"));
-              positions[i * n_dofs + j] = int(found - row_columns);
-            }
-      for (unsigned int i = 0; i < c.dofs.size(); ++i)
-        {
-          const int ierr = matrix.SumIntoMyValues(local_rows[i], c.dofs.size(), &c.matrix(i, 0),
-                                                  local_cols.data());
-          AssertThrow(ierr == 0, ExcTrilinosError(ierr));
-        }
-      return true;
-    };
-    auto copier = [&](const thermal::CopyData &c) {
-      if (rhs)
-        constraints.distribute_local_to_global(c.vector, c.dofs, *rhs);
-      // The tangent keeps the columns of the Dirichlet dofs: f at a free dof
-      // depends on the iterate's boundary values (K_IB y_B), and a stage's
-      // Newton step moves those values when the boundary temperature changes
-      // in time. Condensing them out (as `constraints` would) drops −γ K_IB δy_B
-      // and, where ARKode takes one Newton step (a linear problem), leaves an
-      // error ~ γ K_IB Δg: 646 K instead of <= 393 K on a strip heated from
-      // 293 K at 100 K/s (tests/heat_dirichlet_ramp.py).
-      if (tangent && !add_by_local_indices(c))
-        hanging.distribute_local_to_global(c.matrix, c.dofs, *tangent);
-    };
-    for_owned_cells(dof_handler, worker, copier, scratch);
 
     if (rhs)
       {

@@ -33,6 +33,10 @@ namespace anvil
             if (f)
               f->set_time(t);
         }
+    // Insulated everywhere (the boundary list is the same on every
+    // process): no face loop, no FEFaceValues on the moving mapping.
+    if (power.empty())
+      return power;
     FEFaceValues<dim> fe_face(get_mapping(), fe, face_quadrature,
                               update_values | update_JxW_values | update_quadrature_points);
     std::vector<double> T_f(face_quadrature.size());

@@ -198,6 +198,7 @@ namespace anvil
       m->reinit(locally_owned_dofs, locally_owned_dofs, cell_pattern, mpi_communicator);
     tangent_positions_values = nullptr; // its entries moved (thermal_assembly.cc)
     exchange_pattern_current = false;
+    covered_groups.clear();
     for (auto *v : {&lumped_mass, &mass_diagonal, &solution, &old_solution})
       v->reinit(locally_owned_dofs, mpi_communicator);
     for (auto *v : {&temperature_ghosted, &old_temperature_ghosted, &scratch_ghosted})
@@ -316,15 +317,27 @@ namespace anvil
   }
 
   template <int dim>
-  bool ThermalProblem<dim>::covers(const std::vector<std::vector<types::global_dof_index>> &groups) const
+  bool ThermalProblem<dim>::covers(const std::vector<std::vector<types::global_dof_index>> &groups)
   {
-    bool covered = true;
+    // One look-up per group; the new ones join the known after the vote.
+    bool                                                  covered = true;
+    std::vector<const std::vector<types::global_dof_index> *> fresh;
     for (const auto &group : groups)
-      for (const auto i : group)
-        if (locally_owned_dofs.is_element(i))
-          for (const auto j : group)
-            covered = covered && exchange_pattern.exists(i, j);
-    return Utilities::MPI::min(covered ? 1 : 0, mpi_communicator) == 1;
+      {
+        const auto known = covered_groups.lower_bound(group);
+        if (known != covered_groups.end() && *known == group)
+          continue;
+        fresh.push_back(&group);
+        for (const auto i : group)
+          if (locally_owned_dofs.is_element(i))
+            for (const auto j : group)
+              covered = covered && exchange_pattern.exists(i, j);
+      }
+    covered = Utilities::MPI::min(covered ? 1 : 0, mpi_communicator) == 1;
+    if (covered)
+      for (const auto *group : fresh)
+        covered_groups.insert(*group);
+    return covered;
   }
 
   template <int dim>
@@ -342,13 +355,14 @@ namespace anvil
       {
         current_mapping = std::make_unique<MappingQ1Eulerian<dim, Vector>>(mechanics_dofs, configuration);
         moved_vertices.resize(triangulation.n_vertices());
+        const Vector &u = configuration; // const reads: no VectorReference per value
         for (const auto &cell : mechanics_dofs.active_cell_iterators())
           if (cell->is_locally_owned())
             for (const unsigned int v : cell->vertex_indices())
               {
                 Point<dim> x = cell->vertex(v);
                 for (unsigned int d = 0; d < dim; ++d)
-                  x[d] += configuration(cell->vertex_dof_index(v, d));
+                  x[d] += u(cell->vertex_dof_index(v, d));
                 moved_vertices[cell->vertex_index(v)] = x;
               }
       }

@@ -8,11 +8,53 @@
 
 #include "newton_factorisation.h"
 
+#include <Epetra_CrsMatrix.h>
+
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace anvil
 {
   using namespace dealii;
+
+  namespace
+  {
+    /// @p to = @p a + γ @p b value by value where the three have one CRS
+    /// layout (rows, columns, column map: built from one pattern), what
+    /// copy_from and add(γ, ·) compute entry by entry, without their row
+    /// look-ups (two_blocks: 33 M → ~3 M instructions). False if not.
+    bool sum_in_one_layout(TrilinosWrappers::SparseMatrix &to, const TrilinosWrappers::SparseMatrix &a,
+                           const double gamma, const TrilinosWrappers::SparseMatrix &b)
+    {
+      int    *to_rows = nullptr, *to_cols = nullptr;
+      double *to_values = nullptr;
+      auto   &target    = const_cast<Epetra_CrsMatrix &>(to.trilinos_matrix());
+      if (target.ExtractCrsDataPointers(to_rows, to_cols, to_values) != 0)
+        return false;
+      const int n_rows = target.NumMyRows(), n_entries = target.NumMyNonzeros();
+      const int n_columns = target.ColMap().NumMyElements();
+      std::array<const double *, 2> values{};
+      std::array<const TrilinosWrappers::SparseMatrix *, 2> sources{&a, &b};
+      for (unsigned int m = 0; m < 2; ++m)
+        {
+          auto &source = const_cast<Epetra_CrsMatrix &>(sources[m]->trilinos_matrix());
+          int    *rows = nullptr, *cols = nullptr;
+          double *v    = nullptr;
+          if (source.ExtractCrsDataPointers(rows, cols, v) != 0 || source.NumMyRows() != n_rows ||
+              source.NumMyNonzeros() != n_entries || source.ColMap().NumMyElements() != n_columns ||
+              !std::equal(rows, rows + n_rows + 1, to_rows) || !std::equal(cols, cols + n_entries, to_cols))
+            return false;
+          for (int c = 0; c < n_columns; ++c)
+            if (source.ColMap().GID64(c) != target.ColMap().GID64(c))
+              return false;
+          values[m] = v;
+        }
+      for (int k = 0; k < n_entries; ++k)
+        to_values[k] = values[0][k] + gamma * values[1][k];
+      return true;
+    }
+  } // namespace
 
   template <int dim>
   void ThermalProblem<dim>::update_exchange_pattern()
@@ -43,6 +85,8 @@ namespace anvil
     mass_in_pattern.reinit(newton_matrix);
     newton_direct->clear();
     exchange_pattern_current = true;
+    covered_groups.clear();
+    covered_groups.insert(groups.begin(), groups.end());
     mass_in_pattern_current  = false;
     tangent_current          = false;
     couplings_current        = false; // dirichlet_mass takes the tangent's layout
@@ -74,8 +118,11 @@ namespace anvil
               mass_in_pattern.add(1., mass_matrix);
             mass_in_pattern_current = true;
           }
-        newton_matrix.copy_from(mass_in_pattern);
-        newton_matrix.add(gamma, tangent_matrix);
+        if (!sum_in_one_layout(newton_matrix, mass_in_pattern, gamma, tangent_matrix))
+          {
+            newton_matrix.copy_from(mass_in_pattern);
+            newton_matrix.add(gamma, tangent_matrix);
+          }
         exchange.add_matrix([&](const types::global_dof_index i, const types::global_dof_index j,
                                 const double d) { newton_matrix.add(i, j, -gamma * d); });
         newton_matrix.compress(VectorOperation::add);
@@ -88,7 +135,7 @@ namespace anvil
           newton_matrix.add(i, i, lumped_mass(i));
         newton_matrix.compress(VectorOperation::add);
       }
-    else
+    else if (!sum_in_one_layout(newton_matrix, mass_matrix, gamma, tangent_matrix))
       {
         newton_matrix.copy_from(mass_matrix);
         newton_matrix.add(gamma, tangent_matrix);

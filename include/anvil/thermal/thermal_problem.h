@@ -25,6 +25,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -402,8 +403,9 @@ namespace anvil
     /// slave reaches next: fewer rebuilds of the pattern).
     dealii::DynamicSparsityPattern
     exchange_sparsity(const std::vector<std::vector<dealii::types::global_dof_index>> &groups) const;
-    /// Whether exchange_pattern has every pair of each of @p groups (all processes).
-    bool covers(const std::vector<std::vector<dealii::types::global_dof_index>> &groups) const;
+    /// Whether exchange_pattern has every pair of each of @p groups (all
+    /// processes); the groups found covered are remembered (covered_groups).
+    bool covers(const std::vector<std::vector<dealii::types::global_dof_index>> &groups);
     /// Boundary, source and Dirichlet heat of the step just solved (trapezoidal in time).
     void   step_balance(double time_old, double time_new);
     /// Steady state: f(T, t) with the Temperature and hanging rows zero (|f| returned).
@@ -469,6 +471,10 @@ namespace anvil
     std::unique_ptr<KluFactorization>                            mass_direct;
     /// tangent_matrix and newton_matrix have the exchange's couplings of its last couplings().
     bool exchange_pattern_current = false;
+    /// The exchange's groups exchange_pattern is known to hold: covers()
+    /// looks up only the others (the list only grows; two_blocks ends with
+    /// 211 groups, of which a step adds a few).
+    std::set<std::vector<dealii::types::global_dof_index>> covered_groups;
     dealii::DynamicSparsityPattern cell_pattern, exchange_pattern; // sparsity(), exchange_sparsity()
     dealii::TrilinosWrappers::PreconditionJacobi                  mass_jacobi;
     bool   operators_current = false, use_direct = true, linear = true;
