@@ -6,6 +6,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <anvil/contact/contact_problem.h>
+#include <anvil/core/gather.h>
 #include <anvil/core/instantiate.h>
 
 #include <algorithm>
@@ -108,7 +109,7 @@ namespace anvil
     node_thermal_dof.assign(node_reference.size(), numbers::invalid_dof_index);
     heat_couplings.clear();
     heat_couplings_grew = false;
-    for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
+    for (const auto &part : gather_doubles(mpi_communicator, local))
       for (std::size_t i = 0; i + dim + 2 <= part.size(); i += dim + 2)
         {
           std::array<double, dim + 1> X;
@@ -181,7 +182,7 @@ namespace anvil
           }
       }
     heat_elements.clear();
-    for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
+    for (const auto &part : gather_doubles(mpi_communicator, local))
       for (std::size_t i = 0; i + 15 <= part.size(); i += 15)
         {
           HeatElement e;

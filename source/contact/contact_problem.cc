@@ -8,6 +8,7 @@
 
 #include <anvil/contact/contact_problem.h>
 #include <anvil/contact/free_end.h>
+#include <anvil/core/gather.h>
 #include <anvil/core/input_error.h>
 #include <anvil/core/instantiate.h>
 #include <anvil/core/scene.h>
@@ -66,7 +67,7 @@ namespace anvil
                     local.push_back(cell->vertex(v)[c]);
                 }
             }
-    const auto all = Utilities::MPI::all_gather(mpi_communicator, local);
+    const auto all = gather_doubles(mpi_communicator, local);
 
     // Nodes by their x dof, then numbered in the order of their reference
     // coordinates (independent of the partition).

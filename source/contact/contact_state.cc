@@ -7,6 +7,7 @@
 #include <deal.II/numerics/rtree.h>
 
 #include <anvil/contact/contact_problem.h>
+#include <anvil/core/gather.h>
 #include <anvil/core/input_error.h>
 #include <anvil/core/instantiate.h>
 #include <anvil/core/scene.h>
@@ -115,7 +116,7 @@ namespace anvil
           local.push_back(st.tangential_force[d]);
       }
     std::vector<double> all;
-    for (const auto &part : Utilities::MPI::all_gather(mpi_communicator, local))
+    for (const auto &part : gather_doubles(mpi_communicator, local))
       all.insert(all.end(), part.begin(), part.end());
     out << std::setprecision(17) << all.size();
     for (const double x : all)
