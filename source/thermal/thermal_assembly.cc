@@ -449,6 +449,14 @@ namespace anvil
         for_owned_cells(dof_handler, worker, copier, scratch);
       }
 
+    finish_assembly(t, y, g_dot, rhs, tangent);
+  }
+
+  template <int dim>
+  void ThermalProblem<dim>::finish_assembly(const double t, const Vector &y,
+                                            const std::map<types::global_dof_index, double> &g_dot,
+                                            Vector *rhs, TrilinosWrappers::SparseMatrix *tangent)
+  {
     if (rhs)
       {
         rhs->compress(VectorOperation::add);

@@ -375,6 +375,10 @@ namespace anvil
     void   assemble_mass();
     /// r = f(T, t) (if @p rhs) and A = ∂(K T − F)/∂T (if @p tangent), T from the owned @p y.
     void   assemble(double t, const Vector &y, Vector *rhs, dealii::TrilinosWrappers::SparseMatrix *tangent);
+    /// assemble()'s last part: the exchange's rhs, the Dirichlet rows (M ġ) and the
+    /// constrained rows of the tangent, after the cells' contributions.
+    void   finish_assembly(double t, const Vector &y, const std::map<dealii::types::global_dof_index, double> &g_dot,
+                           Vector *rhs, dealii::TrilinosWrappers::SparseMatrix *tangent);
     /// F = ∫ s φ dv of the mechanics' sources into step_sources (fast linear path).
     void   assemble_step_sources();
     /// rhs += the prescribed fluxes and the convection loads h T∞ at t (fast linear path).
