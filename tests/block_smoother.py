@@ -4,7 +4,7 @@ DoFs; doc/linear_solver.md):
 - the aggregate-block Gauss-Seidel smoother (source/mechanics/block_smoother.cc,
   ANVIL_FINE_SMOOTHER=blocks) with 4 sweeps per smoothing,
 - the isochoric modes in the near-null space with Chebyshev 5
-  (ANVIL_ISOCHORIC_MODES=1, ANVIL_ML_PARAMETERS="smoother: sweeps:int=5";
+  (Mechanics/Linear solver/AMG isochoric modes = true, AMG smoother degree = 5;
   session 14),
 each need at most 30 Krylov iterations per solve at 1e-8 relative (issue 15's
 bound), fewer than the default AMG (rigid-body modes, Chebyshev 2); and with
@@ -20,19 +20,20 @@ SETS = ["Dimension=3", "Geometry/Blocks=body: 0.1, 0, 0, 1.1, 1, 1, 10, 10, 10",
         "Boundary conditions/Displacement=bottom: ux = 0, uy = 0, uz = 0; top: ux = 0.05*t, uy = -0.1*t, uz = 0.02*t",
         "Mechanics/Element=F-bar", "Mechanics/Newton/Residual tolerance=1e-12", "Time/End time=0.5"]
 BLOCKS = {"ANVIL_FINE_SMOOTHER": "blocks", "ANVIL_BLOCK_SWEEPS": "2"}
-ISOCHORIC = {"ANVIL_ISOCHORIC_MODES": "1", "ANVIL_ML_PARAMETERS": "smoother: sweeps:int=5"}
-# name: (environment, linear tolerance); "direct" is KLU.
-RUNS = {"direct": ({}, "1e-10"), "blocks": (BLOCKS, "1e-10"), "isochoric": (ISOCHORIC, "1e-10"),
-        "chebyshev": ({}, "1e-8"), "blocks, 4 sweeps": (dict(BLOCKS, ANVIL_BLOCK_SWEEPS="4"), "1e-8"),
-        "isochoric, 1e-8": (ISOCHORIC, "1e-8")}
+ISOCHORIC = ["Mechanics/Linear solver/AMG isochoric modes=true", "Mechanics/Linear solver/AMG smoother degree=5"]
+# name: (environment, scene settings, linear tolerance); "direct" is KLU.
+RUNS = {"direct": ({}, [], "1e-10"), "blocks": (BLOCKS, [], "1e-10"), "isochoric": ({}, ISOCHORIC, "1e-10"),
+        "chebyshev": ({}, [], "1e-8"), "blocks, 4 sweeps": (dict(BLOCKS, ANVIL_BLOCK_SWEEPS="4"), [], "1e-8"),
+        "isochoric, 1e-8": ({}, ISOCHORIC, "1e-8")}
 out, per_solve = {}, {}
-for name, (environment, tolerance) in RUNS.items():
-    for k in list(BLOCKS) + list(ISOCHORIC):
+for name, (environment, settings, tolerance) in RUNS.items():
+    for k in BLOCKS:
         os.environ.pop(k, None)
     os.environ.update(environment)
     out[name], s, _ = run("tests/plastic_block.prm",
-                          SETS + ["Mechanics/Linear solver/Type=" + ("direct" if name == "direct" else "iterative"),
-                                  "Mechanics/Linear solver/Tolerance=" + tolerance],
+                          SETS + settings +
+                          ["Mechanics/Linear solver/Type=" + ("direct" if name == "direct" else "iterative"),
+                           "Mechanics/Linear solver/Tolerance=" + tolerance],
                           name="block_smoother_" + name.replace(", ", "_").replace(" ", "_"))
     check(s["status"] == "completed", "%s: completed" % name)
     per_solve[name] = s["linear_iterations"] / max(1, s["newton_iterations"])
