@@ -6,6 +6,10 @@
 #ifndef anvil_tests_adiabatic_materials_h
 #define anvil_tests_adiabatic_materials_h
 
+#include <deal.II/base/symmetric_tensor.h>
+
+#include <anvil/material/material_point.h>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,6 +22,20 @@ namespace anvil::testing
     " set Density = 7.8e-9\n set Heat capacity = 4.6e8\n"
     " subsection Modulus temperature factor\n set Model = linear\n set Softening = 4e-4\n end\n"
     "end\n";
+
+  /// The tests' increment: Δε at T = 350 K, ΔT = 5 K, Δt = 1e-5 s, J = 1.01.
+  inline MaterialIncrement adiabatic_test_increment(const dealii::SymmetricTensor<2, 3> &de,
+                                                    const bool                           adiabatic)
+  {
+    MaterialIncrement inc;
+    inc.strain_increment      = de;
+    inc.temperature           = 350;
+    inc.temperature_increment = 5;
+    inc.time_step             = 1e-5;
+    inc.volume_ratio          = 1.01;
+    inc.adiabatic             = adiabatic;
+    return inc;
+  }
 
   /// (name, material text) of J2 with linear and with saturation hardening,
   /// both softened by eq. 35, on @p elastic.

@@ -36,14 +36,7 @@ namespace
 
   MaterialIncrement increment(const SymmetricTensor<2, 3> &de, const bool adiabatic)
   {
-    MaterialIncrement inc;
-    inc.strain_increment      = de;
-    inc.temperature           = 350;
-    inc.temperature_increment = 5;
-    inc.time_step             = 1e-5;
-    inc.volume_ratio          = 1.01;
-    inc.adiabatic             = adiabatic;
-    return inc;
+    return testing::adiabatic_test_increment(de, adiabatic);
   }
 
   struct Errors

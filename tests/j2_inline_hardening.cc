@@ -14,6 +14,8 @@
 
 #include <anvil/material/j2_plasticity.h>
 
+#include "adiabatic_materials.h"
+
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -94,13 +96,7 @@ int main()
         sigma_n[0][0] = 60, sigma_n[1][1] = -20, sigma_n[0][1] = 35;
         const double f = scale * 150 / 84000;
         de[0][0] = 1.0 * f, de[1][1] = -0.4 * f, de[2][2] = -0.3 * f, de[0][1] = 0.5 * f;
-        MaterialIncrement inc;
-        inc.strain_increment      = de;
-        inc.temperature           = 350;
-        inc.temperature_increment = 5;
-        inc.time_step             = 1e-5;
-        inc.volume_ratio          = 1.01;
-        inc.adiabatic             = true;
+        const MaterialIncrement inc = testing::adiabatic_test_increment(de, true);
         const MaterialRequest request =
           tangent ? request_stress | request_tangent : request_stress;
         auto adiabatic = model->create_point();

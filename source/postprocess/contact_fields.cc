@@ -1,5 +1,6 @@
 #include <deal.II/base/mpi.h>
 
+#include <anvil/core/gather.h>
 #include <anvil/postprocess/field_output.h>
 #include <anvil/postprocess/vtu_writer.h>
 
@@ -38,18 +39,13 @@ namespace anvil
                                      o.friction_power, o.conductance, o.heat_flux, double(o.pair)});
         }
       const std::string name = "contact_" + Utilities::int_to_string(s.step, 5) + ".vtu";
-      if (Utilities::MPI::n_mpi_processes(s.communicator) == 1)
-        write_vtu(s.output_directory + "/fields/" + name, local, this->schedule.raw_vtu());
-      else
+      const auto parts = gather_doubles(s.communicator, local); // no packing; none on one process
+      if (s.is_root())
         {
-          const auto parts = Utilities::MPI::all_gather(s.communicator, local);
-          if (s.is_root())
-            {
-              std::vector<double> all;
-              for (const auto &part : parts)
-                all.insert(all.end(), part.begin(), part.end());
-              write_vtu(s.output_directory + "/fields/" + name, all, this->schedule.raw_vtu());
-            }
+          std::vector<double> all;
+          for (const auto &part : parts)
+            all.insert(all.end(), part.begin(), part.end());
+          write_vtu(s.output_directory + "/fields/" + name, all, this->schedule.raw_vtu());
         }
       this->schedule.record(s.time, "fields/" + name, s.output_directory + "/contact.pvd", s.is_root());
     }
