@@ -43,6 +43,56 @@ namespace anvil
       u_ghosted = u;
       return false;
     }
+    struct ConvergenceTest
+    {
+      bool residual_ok = false; // the residual alone is small enough
+      bool converged   = false;
+    };
+
+    /// Newton's convergence test at residual @p r: the residual (absolute,
+    /// relative to the force @p scale, or on its round-off floor) and the
+    /// next correction, predicted from the last one @p last_increment (< 0:
+    /// none yet) and the residual's contraction, below the displacement
+    /// tolerance. The first iterate of a step whose boundary values jump
+    /// (@p with_jump) is never accepted.
+    template <typename Parameters, typename Floor>
+    ConvergenceTest test_convergence(const Parameters &parameters, const double r,
+                                     const double r_previous, const double scale,
+                                     const double du_scale, const double last_increment,
+                                     const double increment_floor, const bool first_iterate,
+                                     const bool with_jump, Floor &&residual_floor)
+    {
+      ConvergenceTest test;
+      // Below the round-off floor of u's digits no tolerance can be met
+      // (residual_floor.cc). The floor is ε-relative: a residual above 1e-3
+      // of the force scale is never on it, and the floor (a pass over the
+      // matrix diagonal) is only worth computing in the last iterations.
+      test.residual_ok = r <= parameters.absolute_residual_tolerance ||
+                         r <= parameters.residual_tolerance * scale ||
+                         (r <= 1e-3 * scale && r <= residual_floor());
+      // The correction that would come next is about the last one times the
+      // residual's contraction (quadratic convergence makes this sharp):
+      // test that instead of paying one more solve to see it.
+      const double predicted_increment =
+        last_increment * std::min(1.0, r / std::max(r_previous, 1e-300));
+      const bool increment_ok =
+        (last_increment >= 0 &&
+         predicted_increment <= std::max({parameters.displacement_tolerance * du_scale,
+                                          parameters.absolute_displacement_tolerance,
+                                          increment_floor})) ||
+        r <= parameters.absolute_residual_tolerance;
+      // Corrections a thousand times below the increment tolerance mean the
+      // residual sits on its round-off floor: accept.
+      const bool stagnated =
+        last_increment >= 0 &&
+        last_increment <= std::max(1e-3 * parameters.displacement_tolerance * du_scale,
+                                   increment_floor) &&
+        r <= 1e3 * parameters.residual_tolerance * scale;
+      test.converged =
+        (test.residual_ok && (increment_ok || first_iterate) && !(first_iterate && with_jump)) ||
+        stagnated;
+      return test;
+    }
   } // namespace
 
   template <int dim>
@@ -155,39 +205,18 @@ namespace anvil
         TrilinosWrappers::MPI::Vector step_u(owned_solution);
         step_u -= owned_old_solution;
         const double du_scale = step_u.l2_norm();
-        // Below the round-off floor of u's digits no tolerance can be met
-        // (residual_floor.cc). The floor is ε-relative: a residual above 1e-3
-        // of the force scale is never on it, and the floor (a pass over the
-        // matrix diagonal) is only worth computing in the last iterations.
-        const bool residual_ok = r <= parameters.absolute_residual_tolerance ||
-                                 r <= parameters.residual_tolerance * scale ||
-                                 (r <= 1e-3 * scale && r <= residual_floor());
-        // The correction that would come next is about the last one times the
-        // residual's contraction (quadratic convergence makes this sharp):
-        // test that instead of paying one more solve to see it.
         const double r_previous = result.residuals.size() > 1 ?
                                     result.residuals[result.residuals.size() - 2] : r;
-        const double predicted_increment =
-          last_increment * std::min(1.0, r / std::max(r_previous, 1e-300));
         // Corrections cannot fall below round-off of the displacement itself.
         // (positions x = X + u carry the digits, so the scale is the mesh size).
         const double increment_floor =
           100 * std::numeric_limits<double>::epsilon() *
           (owned_solution.l2_norm() + std::sqrt(double(dof_handler.n_dofs())) * mesh_diameter);
-        const bool   increment_ok =
-          (last_increment >= 0 &&
-           predicted_increment <= std::max({parameters.displacement_tolerance * du_scale,
-                                            parameters.absolute_displacement_tolerance,
-                                            increment_floor})) ||
-          r <= parameters.absolute_residual_tolerance;
-        // Corrections a thousand times below the increment tolerance mean the
-        // residual sits on its round-off floor: accept.
-        const bool stagnated =
-          last_increment >= 0 &&
-          last_increment <= std::max(1e-3 * parameters.displacement_tolerance * du_scale,
-                                     increment_floor) &&
-          r <= 1e3 * parameters.residual_tolerance * scale;
-        if ((residual_ok && (increment_ok || it == 0) && !(it == 0 && has_jump)) || stagnated)
+        const ConvergenceTest test =
+          test_convergence(parameters, r, r_previous, scale, du_scale, last_increment,
+                           increment_floor, it == 0, has_jump, [&] { return residual_floor(); });
+        const bool residual_ok = test.residual_ok;
+        if (test.converged)
           {
             result.converged     = true;
             result.iterations    = it;

@@ -329,6 +329,26 @@ namespace anvil
       int          tool = -1;
       double       hA = 0, power = 0, share = 0.5; // mW/K, mW, slave share of the power
     };
+    /// Whether no surface node moved, relative to the common translation, far
+    /// enough since t_n that the step's candidate lists could miss a face
+    /// (assemble() then filters them instead of searching; contact_evaluation.cc).
+    bool near_step_start(const std::vector<dealii::Point<dim>> &x) const;
+    /// Slave @p slot (the @p i-th of its pass) against its candidate master
+    /// faces: the contact element of the closest face, a free end or a concave
+    /// corner, its trial's face and weights, the masters' dofs appended to
+    /// @p dofs; @p missing set when the pattern lacks a coupling it needs.
+    const contact::ContactResult<dim> &
+    evaluate_on_faces(unsigned int p, unsigned int pass, unsigned int i, Slot &slot,
+                      const CandidateLists &candidates, const std::vector<dealii::Point<dim>> &x,
+                      const contact::FrictionLaw &law, bool with_matrix,
+                      std::vector<dealii::types::global_dof_index> &dofs, bool &missing);
+    /// setup()'s parts: every process's contact faces as raw numbers (boundary,
+    /// body, per vertex its dofs and reference position) gathered on all; the
+    /// surface nodes numbered by reference position (independent of the
+    /// partition) with faces, surfaces and node_faces; each pair's two sides.
+    std::vector<std::vector<double>> gather_surface_faces(const dealii::DoFHandler<dim> &dof_handler) const;
+    void number_surfaces(const std::vector<std::vector<double>> &all, const dealii::IndexSet &owned);
+    void build_pair_sides();
     std::vector<double> gather_node_values(const Vector &v) const;
     /// The seed's characteristic area of a slave node (§3.1, Fig. 2): (L₁ + L₂)/2 with
     /// L₁, L₂ the projections of its two slave segments on the master's tangent,
