@@ -73,6 +73,17 @@ namespace anvil
 
       bool is_planar(const SymmetricTensor<2, 3> &s) { return s[0][2] == 0 && s[1][2] == 0; }
 
+      /// det(½(F + F_n)), planar ones by their five entries (point_determinant()'s terms).
+      double mid_determinant(const Tensor<2, 3> &F, const Tensor<2, 3> &F_old)
+      {
+        if (!is_planar(F) || !is_planar(F_old))
+          return point_determinant(0.5 * (F + F_old));
+        const double H00 = 0.5 * (F[0][0] + F_old[0][0]), H01 = 0.5 * (F[0][1] + F_old[0][1]);
+        const double H10 = 0.5 * (F[1][0] + F_old[1][0]), H11 = 0.5 * (F[1][1] + F_old[1][1]);
+        const double H22 = 0.5 * (F[2][2] + F_old[2][2]);
+        return H00 * (H11 * H22) - H01 * (H10 * H22);
+      }
+
       /**
        * σ̄ : Δε over the step on the true F (Hughes–Winget, Jaumann): the
        * numbers of IncrementalKinematics::reinit()'s planar path and
@@ -155,7 +166,7 @@ namespace anvil
       const MaterialResponse      &r       = p.response;
       const SymmetricTensor<2, 3> &sigma_n = point.committed_stress();
       // dv½ = det(½(F + F_n)) dV: the mid configuration Δε lives on.
-      const double dv_half = point_determinant(0.5 * (F + F_old)) * p.w;
+      const double dv_half = mid_determinant(F, F_old) * p.w;
 
       // The material's stress power over the step, on its own kinematics (F̄ with F-bar):
       // a J2 point kept σ̄ and Δε of its last update (J2Model::last_step()), the
