@@ -228,16 +228,74 @@ namespace anvil
   template <int dim>
   void CoupledProblem<dim>::point_temperatures_from_heat_field()
   {
-    const unsigned int  n_q = mechanical->get_quadrature().size();
-    std::vector<double> T_new(n_q), T_old(n_q);
-    const bool          by_table = thermal->point_values_by_table();
-    for (const auto &cell : triangulation->active_cell_iterators())
+    // T(x_q) = Σ_j T_j φ_j(x_q) per owned cell: one small matrix-vector
+    // product, summed as FEValues::get_function_values does (the same bits),
+    // from a table made once per layout of the ghosted temperature.
+    const Quadrature<dim>   &quadrature = mechanical->get_quadrature();
+    const DoFHandler<dim>   &dof_handler = thermal->get_dof_handler();
+    const unsigned int       n_q = quadrature.size(), n_dofs = dof_handler.get_fe().n_dofs_per_cell();
+    const auto              &T   = thermal->temperature().trilinos_vector();
+    const Epetra_BlockMap   &map = T.Map();
+    PointInterpolation      &table = point_interpolation;
+    const auto same_layout = [&]() {
+      if (!table.map || table.local_dofs.size() !=
+                          std::size_t(triangulation->n_locally_owned_active_cells()) * n_dofs)
+        return false;
+      if (map.DataPtr() == table.map->DataPtr())
+        return true;
+      const int n = map.NumMyElements();
+      if (table.map->NumMyElements() != n)
+        return false;
+      for (int i = 0; i < n; ++i)
+        if (map.GID64(i) != table.map->GID64(i))
+          return false;
+      return true;
+    };
+    if (!same_layout())
+      {
+        table.shape.assign(n_dofs * n_q, 0.);
+        table.local_dofs.clear();
+        FEValues<dim> values(mechanical->get_mapping(), dof_handler.get_fe(), quadrature, update_values);
+        std::vector<types::global_dof_index> dofs(n_dofs);
+        bool                                 first = true;
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              if (first)
+                {
+                  values.reinit(cell);
+                  for (unsigned int j = 0; j < n_dofs; ++j)
+                    for (unsigned int k = 0; k < n_q; ++k)
+                      table.shape[j * n_q + k] = values.shape_value(j, k);
+                  first = false;
+                }
+              cell->get_dof_indices(dofs);
+              for (const auto i : dofs)
+                {
+                  const int lid = map.LID(static_cast<TrilinosWrappers::types::int_type>(i));
+                  AssertThrow(lid >= 0, ExcInternalError());
+                  table.local_dofs.push_back(lid);
+                }
+            }
+        table.map = std::make_unique<Epetra_BlockMap>(map);
+      }
+    const double *const array = T[0];
+    const double       *shape = table.shape.data();
+    const int          *local = table.local_dofs.data();
+    for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
         {
-          thermal->temperature_at_quadrature_points(cell, mechanical->get_quadrature(), T_new, T_old,
-                                                    by_table);
-          auto values = point_temperature[cell];
-          std::copy(T_new.begin(), T_new.end(), values.begin());
+          auto out = point_temperature[cell];
+          std::fill(out.begin(), out.end(), 0.);
+          for (unsigned int j = 0; j < n_dofs; ++j)
+            {
+              const double value = array[local[j]];
+              if (value == 0)
+                continue;
+              for (unsigned int k = 0; k < n_q; ++k)
+                out[k] += value * shape[j * n_q + k];
+            }
+          local += n_dofs;
         }
   }
 

@@ -413,13 +413,13 @@ namespace anvil
                               vector_map.MyGlobalElements())),
                 ExcInternalError());
     assembly_mapping->reserve_vector_indices(n_dofs_per_cell);
-    const bool heat = static_cast<bool>(temperature_field);
-    static_assert(n_audit_terms == 6, "step_audit holds every AuditTerm");
+    static_assert(n_audit_terms == 7 && audit_elastic_energy == 6,
+                  "step_audit holds every AuditTerm but the state's elastic energy");
     step_audit.fill(0.);
     // The state's elastic energy ∫ W dv, W = p²/2K(T) + s:s/4G(T), at the points'
     // stresses and temperatures and J = det F of their u (doc/energy_audit.md):
     // the stress balance's state route, from the stresses alone, not from the
-    // step's work sums; J and dV as audit() computed them at these points.
+    // step's work sums (audit() evaluates it beside the step's terms).
     double elastic_energy = 0;
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (cell->is_locally_owned())
@@ -443,21 +443,10 @@ namespace anvil
             }
           material_update.audit(cell, scratch, copy);
           for (const auto &terms : copy.audit)
-            for (unsigned int k = 0; k < terms.size(); ++k)
-              step_audit[k] += terms[k];
-
-          const auto &m  = *materials.at(cell->material_id());
-          const auto *j2 = dynamic_cast<const J2Model *>(&m);
-          for (unsigned int q = 0; q < scratch.points.size(); ++q)
             {
-              const PointValues &p     = scratch.points[q];
-              const double       T     = heat ? material_temperature(cell, q) : parameters.temperature;
-              const double       K     = j2 ? j2->elastic.bulk_modulus(T) : m.bulk_modulus();
-              const double       G     = j2 ? j2->elastic.shear_modulus(T) : m.shear_modulus();
-              const auto        &sigma = points(cell, q)->stress();
-              const double       pr    = trace(sigma) / 3;
-              const auto         s     = deviator(sigma);
-              elastic_energy += 0.5 * (pr * pr / K + (s * s) / (2 * G)) * p.J * p.w;
+              for (unsigned int k = 0; k < step_audit.size(); ++k)
+                step_audit[k] += terms[k];
+              elastic_energy += terms[audit_elastic_energy];
             }
         }
     std::vector<double> sums(step_audit.begin(), step_audit.end());

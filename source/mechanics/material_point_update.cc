@@ -65,6 +65,89 @@ namespace anvil
           }
         return s;
       }
+
+      bool is_planar(const Tensor<2, 3> &F)
+      {
+        return F[0][2] == 0 && F[1][2] == 0 && F[2][0] == 0 && F[2][1] == 0;
+      }
+
+      bool is_planar(const SymmetricTensor<2, 3> &s) { return s[0][2] == 0 && s[1][2] == 0; }
+
+      /// det(½(F + F_n)), planar ones by their five entries (point_determinant()'s terms).
+      double mid_determinant(const Tensor<2, 3> &F, const Tensor<2, 3> &F_old)
+      {
+        if (!is_planar(F) || !is_planar(F_old))
+          return point_determinant(0.5 * (F + F_old));
+        const double H00 = 0.5 * (F[0][0] + F_old[0][0]), H01 = 0.5 * (F[0][1] + F_old[0][1]);
+        const double H10 = 0.5 * (F[1][0] + F_old[1][0]), H11 = 0.5 * (F[1][1] + F_old[1][1]);
+        const double H22 = 0.5 * (F[2][2] + F_old[2][2]);
+        return H00 * (H11 * H22) - H01 * (H10 * H22);
+      }
+
+      /**
+       * σ̄ : Δε over the step on the true F (Hughes–Winget, Jaumann): the
+       * numbers of IncrementalKinematics::reinit()'s planar path and
+       * mean_stress() where F, F_n and both stresses are [2x2, 0; 0, (2,2)],
+       * with the products of their exact zeros left out (the same bits); the
+       * general kinematics in @p kin otherwise.
+       */
+      double true_stress_work(const Tensor<2, 3>          &F,
+                              const Tensor<2, 3>          &F_old,
+                              const SymmetricTensor<2, 3> &stress_old,
+                              const SymmetricTensor<2, 3> &stress_new,
+                              const ObjectiveRate          rate,
+                              IncrementalKinematics       &kin)
+      {
+        if (!(rate == ObjectiveRate::jaumann && is_planar(F) && is_planar(F_old) &&
+              is_planar(stress_old) && is_planar(stress_new)))
+          {
+            kin.reinit(F, F_old, rate, kinematics_planar_path);
+            return mean_stress(kin, stress_old, stress_new) * kin.strain_increment;
+          }
+        // ΔL = (F − F_n) F½⁻¹ on the block, and (2,2).
+        const double H00 = 0.5 * (F[0][0] + F_old[0][0]), H01 = 0.5 * (F[0][1] + F_old[0][1]);
+        const double H10 = 0.5 * (F[1][0] + F_old[1][0]), H11 = 0.5 * (F[1][1] + F_old[1][1]);
+        const double H22 = 0.5 * (F[2][2] + F_old[2][2]);
+        const double d   = H00 * H11 - H01 * H10;
+        const double Hi[2][2] = {{H11 / d, -H01 / d}, {-H10 / d, H00 / d}};
+        double       dL[2][2];
+        for (unsigned int i = 0; i < 2; ++i)
+          for (unsigned int j = 0; j < 2; ++j)
+            dL[i][j] = (F[i][0] - F_old[i][0]) * Hi[0][j] + (F[i][1] - F_old[i][1]) * Hi[1][j];
+        const double dL22 = (F[2][2] - F_old[2][2]) * (1 / H22);
+        // ΔR and R_h: plane rotations by the Cayley transforms of ½Δω and ¼Δω.
+        const double s = 0.25 * (dL[0][1] - dL[1][0]);
+        const auto plane = [](double (&T)[2][2], const double s) {
+          const double c = 2, w = 1 / (1 + s * s);
+          T[0][0] = T[1][1] = 1 - c * s * s * w;
+          T[0][1]           = c * s * w;
+          T[1][0]           = -c * s * w;
+        };
+        double R[2][2], Q[2][2];
+        plane(R, s);
+        plane(Q, 0.5 * s);
+        // Δε = R_h sym(ΔL) R_hᵀ.
+        const double m00 = dL[0][0], m11 = dL[1][1], m01 = 0.5 * (dL[0][1] + dL[1][0]);
+        const double M00 = Q[0][0] * m00 + Q[0][1] * m01, M01 = Q[0][0] * m01 + Q[0][1] * m11;
+        const double M10 = Q[1][0] * m00 + Q[1][1] * m01, M11 = Q[1][0] * m01 + Q[1][1] * m11;
+        SymmetricTensor<2, 3> strain;
+        strain[0][0] = M00 * Q[0][0] + M01 * Q[0][1];
+        strain[1][1] = M10 * Q[1][0] + M11 * Q[1][1];
+        strain[0][1] = 0.5 * ((M00 * Q[1][0] + M01 * Q[1][1]) + (M10 * Q[0][0] + M11 * Q[0][1]));
+        strain[2][2] = dL22;
+        // σ̄ = ½(ΔR σ_n ΔRᵀ + σ_n+1) (mean_stress()).
+        const SymmetricTensor<2, 3> &S = stress_old;
+        const double A00 = R[0][0] * S[0][0] + R[0][1] * S[1][0], A01 = R[0][0] * S[0][1] + R[0][1] * S[1][1];
+        const double A10 = R[1][0] * S[0][0] + R[1][1] * S[1][0], A11 = R[1][0] * S[0][1] + R[1][1] * S[1][1];
+        const double X00 = A00 * R[0][0] + A01 * R[0][1], X01 = A00 * R[1][0] + A01 * R[1][1];
+        const double X10 = A10 * R[0][0] + A11 * R[0][1], X11 = A10 * R[1][0] + A11 * R[1][1];
+        SymmetricTensor<2, 3> mean;
+        mean[0][0] = 0.5 * (X00 + stress_new[0][0]);
+        mean[1][1] = 0.5 * (X11 + stress_new[1][1]);
+        mean[2][2] = 0.5 * (S[2][2] + stress_new[2][2]);
+        mean[0][1] = 0.5 * ((X01 + X10) * 0.5 + stress_new[0][1]);
+        return mean * strain;
+      }
     } // namespace
 
     template <int dim>
@@ -83,7 +166,7 @@ namespace anvil
       const MaterialResponse      &r       = p.response;
       const SymmetricTensor<2, 3> &sigma_n = point.committed_stress();
       // dv½ = det(½(F + F_n)) dV: the mid configuration Δε lives on.
-      const double dv_half = determinant(0.5 * (F + F_old)) * p.w;
+      const double dv_half = mid_determinant(F, F_old) * p.w;
 
       // The material's stress power over the step, on its own kinematics (F̄ with F-bar):
       // a J2 point kept σ̄ and Δε of its last update (J2Model::last_step()), the
@@ -100,13 +183,14 @@ namespace anvil
         }
       const SymmetricTensor<2, 3> &sigma_bar = *mean;
       terms[audit_material_work] = (sigma_bar * *strain) * dv_half;
-      // What the internal force works with: the true F (∫ σ : ∇ₓδv dv, stress_divergence.cc).
+      // What the internal force works with: the true F (∫ σ : ∇ₓδv dv,
+      // stress_divergence.cc): its own Hughes–Winget increment, an independent
+      // route to the work the nodes see (doc/energy_audit.md).
       if (context.formulation->f_bar)
-        {
-          true_kin.reinit(F, F_old, context.formulation->objective_rate, kinematics_planar_path);
-          terms[audit_stress_work] =
-            (mean_stress(true_kin, sigma_n, r.stress) * true_kin.strain_increment) * dv_half;
-        }
+        terms[audit_stress_work] =
+          true_stress_work(F, F_old, sigma_n, r.stress, context.formulation->objective_rate,
+                           true_kin) *
+          dv_half;
       else
         terms[audit_stress_work] = terms[audit_material_work];
 
@@ -141,15 +225,26 @@ namespace anvil
           thermal_strain = j2->elastic.thermal_strain(T_new, T_new - T_old);
         }
       const double W_old_at_old = elastic_energy_density(sigma_n, K_old, G_old);
-      const double W_old_at_new = elastic_energy_density(sigma_n, K_new, G_new);
-      const double W_new        = elastic_energy_density(r.stress, K_new, G_new);
+      // (The same function of the same numbers where the moduli did not move.)
+      const double W_old_at_new = K_new == K_old && G_new == G_old ?
+                                    W_old_at_old :
+                                    elastic_energy_density(sigma_n, K_new, G_new);
+      // W_n+1, and the state's energy W J dV at the end of the step from the
+      // same p and s : s (compute_step_audit()'s sum, its grouping of the terms).
+      const double p_new  = trace(r.stress) / 3;
+      const auto   s_new  = deviator(r.stress);
+      const double ss_new = s_new * s_new;
+      const double W_new  = 0.5 * p_new * p_new / K_new + ss_new / (4 * G_new);
+      const double J      = point_determinant(F);
+      terms[audit_elastic_energy] =
+        0.5 * (p_new * p_new / K_new + ss_new / (2 * G_new)) * J * p.w;
       terms[audit_thermal_work] =
         (trace(sigma_bar) * thermal_strain - (W_old_at_new - W_old_at_old)) * dv_half;
       // The heat source's plastic work Ẇirr Δt dv (eq. 21), reported beside the audit's.
-      terms[audit_heat_plastic_work] = r.plastic_work_rate * context.time_step * p.J * p.w;
+      terms[audit_heat_plastic_work] = r.plastic_work_rate * context.time_step * J * p.w;
       // ∫ W dv changes with the volume alone: d(W J)/dt = J Ẇ + W J tr D.
       terms[audit_volume_work] =
-        0.5 * (W_old_at_old + W_new) * (determinant(F) - determinant(F_old)) * p.w;
+        0.5 * (W_old_at_old + W_new) * (J - point_determinant(F_old)) * p.w;
     }
 
     template <int dim>
@@ -265,11 +360,12 @@ namespace anvil
     void MaterialPointUpdate<dim>::audit(const CellIterator<dim> &cell, ScratchData<dim> &scratch,
                                          CopyData &copy) const
     {
-      // F and F_n of update() at the same u (bit for bit: the same
-      // operations), the stresses and plastic strains the points hold from
-      // that update, and the plastic work rate it stored. A J2 point kept
-      // what the audit needs of the material's kinematics (F̄ with F-bar):
-      // those are computed only for another law.
+      // F of update() at the same u (bit for bit: the same operations), F_n
+      // as the step's updates kept it (StepStart, where its key is this u_n),
+      // the stresses and plastic strains the points hold from the last
+      // update, and the plastic work rate it stored. A J2 point kept what
+      // the audit needs of the material's kinematics (F̄ with F-bar): those
+      // are computed only for another law.
       const Formulation<dim>    &formulation = *context.formulation;
       const ReferenceCellValues &ref         = scratch.cell;
       auto                 cell_points = (*context.points)[cell];
@@ -277,6 +373,13 @@ namespace anvil
       const auto          *j2          = dynamic_cast<const J2Model *>(&model);
       if (formulation.f_bar && !j2)
         f_bar.evaluate_centre(scratch);
+      const PointStart *kept = nullptr;
+      if (context.step_start)
+        {
+          const auto key = context.step_start->u_old[cell];
+          if (std::memcmp(key.data(), scratch.local_u_old.data(), key.size() * sizeof(double)) == 0)
+            kept = context.step_start->points[cell].data();
+        }
       MaterialIncrement    increment;
       increment.temperature = context.reference_temperature; // without a temperature field
       for (unsigned int q = 0; q < scratch.points.size(); ++q)
@@ -284,7 +387,8 @@ namespace anvil
           PointValues       &p     = scratch.points[q];
           const double       R     = formulation.radius(ref, q);
           const Tensor<2, 3> F     = formulation.deformation_gradient(ref, q, scratch.local_u, R);
-          const Tensor<2, 3> F_old = formulation.deformation_gradient(ref, q, scratch.local_u_old, R);
+          const Tensor<2, 3> F_old =
+            kept ? kept[q].F_old : formulation.deformation_gradient(ref, q, scratch.local_u_old, R);
           if (!j2)
             {
               double       beta  = 1;
@@ -297,7 +401,6 @@ namespace anvil
           p.response.stress                     = point.stress();
           p.response.equivalent_plastic_strain = point.equivalent_plastic_strain();
           p.response.plastic_work_rate          = (*context.plastic_work_rates)(cell, q);
-          p.J     = determinant(F);
           p.point = &point;
           p.w     = formulation.weight(ref, q, R);
           audit_terms(cell, model, j2, q, F, F_old, p, increment, scratch.audit_kin, copy.audit[q]);

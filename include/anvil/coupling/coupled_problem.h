@@ -213,6 +213,16 @@ namespace anvil
     HeatAudit                                                audit;
     double                                                   heat_content_at_start = 0;
     std::string                                              initial_steady_failure;
+    /// point_temperatures_from_heat_field()'s table: FE_Q's values at the
+    /// points (j · n_q + q: they do not depend on the cell) and each owned
+    /// cell's dofs by position in the ghosted temperature's local array (in
+    /// cell order), made once per layout of that vector (`map`).
+    struct PointInterpolation
+    {
+      std::vector<double>              shape;
+      std::vector<int>                 local_dofs;
+      std::unique_ptr<Epetra_BlockMap> map;
+    } point_interpolation;
   };
 
   template <int dim>

@@ -168,6 +168,7 @@ namespace anvil
       audit_thermal_work,    // [σ̄ : βΔT I − (W(σ_n, T_n+1) − W(σ_n, T_n))] dv½
       audit_volume_work,     // ½(W_n + W_n+1)(J_n+1 − J_n) dV
       audit_heat_plastic_work, // Ẇirr Δt dv (eq. 21, the heat source's plastic work)
+      audit_elastic_energy,  // W(σ_n+1, T_n+1) J dV: the state's energy at the step's end, not a step sum
       n_audit_terms
     };
 
