@@ -195,7 +195,25 @@ namespace anvil
     const double band_instructions =
       band_work * band_instructions_per_multiply_add +
       double(n) * (band->lower_bandwidth() + band->upper_bandwidth()) * band_instructions_per_entry;
+    // Instructions are not time on wide bands: the band LU streams its
+    // n (2l + u + 4) doubles (up to 16 MB) through the caches at every
+    // factorisation, KLU's factors stay in them. Measured CPU time per
+    // factorisation and solve (session 15, the folded tube's and
+    // two_blocks' matrices): KLU's refactorisation 0.54 ms per M estimated
+    // flops; the band 2.96 ms per M entries n (l + u), 0.09 per M envelope
+    // multiply-adds and 0.75 per M entries per 100 of width (the caches):
+    // at width 85–203 the band took 1.4–2.3 × KLU's time for 0.7 × its
+    // instructions; at 27–77 (two_blocks, the unfolded tube) 0.56–0.92 ×.
+    // The band also only where its modelled time is within 1.3 × KLU's, or
+    // where it fits the core's 2 MB L2 cache anyway (256 k entries:
+    // two_blocks' bands, the heat's, the unfolded tube's at width 27).
+    const double width = band->lower_bandwidth() + band->upper_bandwidth();
+    const double band_entries_width = double(n) * width / 1e6;
+    const double band_ms = 2.96 * band_entries_width + 0.09 * band_work / 1e6 +
+                           0.75 * band_entries_width * width / 100;
+    const double klu_ms = 0.54 * klu_estimated_flops / 1e6;
     band_chosen = band_instructions < klu_estimated_flops * klu_instructions_per_flop &&
+                  (band_ms <= 1.3 * klu_ms || band_entries <= (1 << 18)) &&
                   (band_entries <= 4 * direct->estimated_entries || band_entries <= (1 << 21));
     return band_chosen;
   }

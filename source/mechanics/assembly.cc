@@ -284,11 +284,21 @@ namespace anvil
       return true;
     };
     // The cell's K and −R where no constraint is involved; false: not added.
+    // Whether a cell has a constrained dof, once per set of constrained dofs
+    // (the predictor's and the iterations' alternate: both kept).
+    signed char *const constrained_cells =
+      assembly_mapping->constrained_cells(active_constraints->get_lines());
     auto add_unconstrained = [&](const CopyData &copy, const int *own) {
-      // Constraints change between steps (the predictor's): asked every time.
-      for (unsigned int i = 0; i < n_dofs; ++i)
-        if (active_constraints->is_constrained(copy.dof_indices[i]))
-          return false;
+      signed char &constrained = constrained_cells[copy.cell_index];
+      if (constrained < 0)
+        {
+          constrained = 0;
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            if (active_constraints->is_constrained(copy.dof_indices[i]))
+              constrained = 1;
+        }
+      if (constrained)
+        return false;
       if (!with_matrix)
         {
           if (!own || !rhs_values)

@@ -45,6 +45,8 @@ namespace anvil
       vector_ids.clear();
       matrix_positions_.clear();
       owned_ids.clear();
+      for (auto &set : constrained_sets)
+        set.flags.clear();
       // The test FEValues::reinit() makes against the cell it saw before.
       chain_start.assign(n_active_cells, typename Triangulation<dim>::cell_iterator());
       for (unsigned int i = 0; i < cells.size(); ++i)

@@ -5,6 +5,7 @@
 
 #include <anvil/mechanics/reference_values.h>
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -131,6 +132,40 @@ namespace anvil
         return &vector_ids[std::size_t(n_dofs) * active_cell_index];
       }
 
+      /**
+       * Per active cell index, whether one of its dofs is constrained (1),
+       * none is (0) or not looked up yet (−1), for the constraints whose
+       * constrained dofs are @p constrained (sorted): the copier then adds a
+       * cell by positions without asking AffineConstraints about each of its
+       * dofs at every assembly. Kept for the two sets seen last (the
+       * predictor's and the iterations' constraints alternate in every
+       * step) while the dof numbering is (cleared by reinit()). Not
+       * thread-safe: the copier runs serially.
+       */
+      template <typename Lines>
+      signed char *constrained_cells(const Lines &constrained) const
+      {
+        const auto same = [&](const std::vector<std::size_t> &dofs) {
+          if (dofs.size() != constrained.size())
+            return false;
+          std::size_t k = 0;
+          for (const auto &line : constrained)
+            if (dofs[k++] != line.index)
+              return false;
+          return true;
+        };
+        for (auto &set : constrained_sets)
+          if (!set.flags.empty() && same(set.dofs))
+            return set.flags.data();
+        auto &set = constrained_sets[next_constrained_set];
+        next_constrained_set ^= 1;
+        set.dofs.clear();
+        for (const auto &line : constrained)
+          set.dofs.push_back(line.index);
+        set.flags.assign(n_active_cells, -1);
+        return set.flags.data();
+      }
+
     protected:
       dealii::CellSimilarity::Similarity
       fill_fe_values(const typename dealii::Triangulation<dim>::cell_iterator &cell,
@@ -149,6 +184,13 @@ namespace anvil
       mutable std::shared_ptr<ReferenceValues<dim>>                    values;
       mutable bool                                                     values_refused = false;
       mutable std::vector<int> local_ids, vector_ids, matrix_positions_, owned_ids;
+      struct ConstrainedSet
+      {
+        std::vector<std::size_t> dofs;
+        std::vector<signed char> flags;
+      };
+      mutable std::array<ConstrainedSet, 2> constrained_sets;
+      mutable unsigned int                  next_constrained_set = 0;
     };
   } // namespace MechanicsAssembly
 } // namespace anvil
