@@ -101,18 +101,20 @@ namespace
     const ThermalProblem<2>::HeatSource source = [](const DoFHandler<2>::active_cell_iterator &cell, unsigned int) {
       return cell->center()[0] < 2 ? 1. : 0.;
     };
-    {
+    // The source's integral on the current configuration, as the loop was written.
+    const auto source_loop = [&]() {
+      double        sum = 0;
       FEValues<2> fe_values(problem->get_mapping(), dofs.get_fe(), q, update_JxW_values | update_quadrature_points);
       for (const auto &cell : dofs.active_cell_iterators())
         if (cell->is_locally_owned() && cell->center()[0] < 2)
           {
             fe_values.reinit(cell);
             for (unsigned int k = 0; k < q.size(); ++k)
-              S_loop += source(cell, k) * fe_values.JxW(k) *
-                        (axisymmetric ? pi2 * fe_values.quadrature_point(k)[0] : 1.);
+              sum += source(cell, k) * fe_values.JxW(k) * (axisymmetric ? pi2 * fe_values.quadrature_point(k)[0] : 1.);
           }
-      S_loop = Utilities::MPI::sum(S_loop, MPI_COMM_WORLD);
-    }
+      return Utilities::MPI::sum(sum, MPI_COMM_WORLD);
+    };
+    S_loop = source_loop();
     problem->set_heat_source(source);
     const double H = problem->heat_content(), S = problem->integrate(source);
 
@@ -158,6 +160,24 @@ namespace
         check(same, std::string("temperatures at quadrature points = FEValues::get_function_values, bit "
                                 "for bit (") + (table_path ? "table" : "look-ups") + ")");
       }
+    // A second configuration in the same layout (the vertices' dof
+    // positions are kept from the first): the bilinear motion plus a
+    // translation by 0.5 in x. Plane: the area is unchanged, 1.3;
+    // axisymmetric: x' grows by 0.5, + 2π · 0.5 · 1.3.
+    motion.initialize("x,y", "0.3*x*y + 0.5; 0.1*x*y", {});
+    VectorTools::interpolate(mech, motion, u_owned);
+    u = u_owned;
+    problem->set_configuration(mech, u);
+    const double S2_loop = source_loop();
+    const double S2 = problem->integrate(source), S2_exact = axisymmetric ? S_exact + pi2 * 0.5 * 1.3 : 1.3;
+    // A source zero everywhere: no cell is visited (no table is built), 0.
+    const double zero = problem->integrate([](const DoFHandler<2>::active_cell_iterator &, unsigned int) { return 0.; });
+    if (root)
+      std::cout << "   moved again: source integral " << S2 << " mW, loop " << S2_loop << ", closed form "
+                << S2_exact << "; zero source " << zero << "\n";
+    check(std::abs(S2 - S2_exact) < 1e-12 * S2_exact, "second configuration: source integral = closed form");
+    check(std::abs(S2 - S2_loop) <= 1e-14 * S2_exact, "second configuration: source integral = the FEValues loop");
+    check(zero == 0, "a source zero everywhere integrates to 0");
     problem.reset(); // before mech goes
   }
 } // namespace

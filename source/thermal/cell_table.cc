@@ -77,7 +77,7 @@ namespace anvil
     void fill_table_q1(thermal::CellTable &table, const std::vector<Point<dim>> &moved_vertices,
                        const Quadrature<dim> &quadrature, const unsigned int n_dofs,
                        const DoFHandler<dim> &dofs, const TrilinosWrappers::MPI::Vector &layout,
-                       const bool axisymmetric)
+                       const bool axisymmetric, const thermal::CellTable &reference)
     {
       table.clear();
       table.n_q    = quadrature.size();
@@ -85,6 +85,19 @@ namespace anvil
       table.row.assign(dofs.get_triangulation().n_active_cells(), -1);
       const Epetra_BlockMap &map = layout.trilinos_vector().Map();
       table.map                  = std::make_unique<Epetra_BlockMap>(map);
+      std::size_t n_cells = 0;
+      for (const auto &cell : dofs.active_cell_iterators())
+        n_cells += cell->is_locally_owned();
+      table.JxW.reserve(n_cells * table.n_q);
+      table.axis_weight.reserve(n_cells * table.n_q);
+      table.points.reserve(n_cells * table.n_q * dim);
+      // The reference table has every owned cell in this order, its dofs in
+      // this layout: the positions are the same (a look-up per dof each
+      // configuration cost ~4.5 M instructions per 79 on two_blocks).
+      const bool same_dofs = reference.n_dofs == n_dofs && reference.reads(map) &&
+                             reference.local_dofs.size() == n_cells * n_dofs;
+      if (same_dofs)
+        table.local_dofs = reference.local_dofs;
       // FE_Q(1)'s shape functions are the Q1 mapping's (built once: its
       // constructor costs ~0.4 M instructions, more than the table).
       static const FE_Q<dim>               linear(1);
@@ -103,6 +116,8 @@ namespace anvil
             table.axis_weight.resize(k + table.n_q);
             table.points.resize((k + table.n_q) * dim);
             geometry.cell_weights(x, axisymmetric, &table.JxW[k], &table.axis_weight[k], &table.points[k * dim]);
+            if (same_dofs)
+              continue;
             cell->get_dof_indices(indices);
             for (const auto i : indices)
               {
@@ -131,7 +146,7 @@ namespace anvil
       return nullptr;
     if (current_table.empty() && !moved_vertices.empty())
       fill_table_q1<dim>(current_table, moved_vertices, quadrature, fe.n_dofs_per_cell(), dof_handler,
-                         temperature_ghosted, parameters.axisymmetric);
+                         temperature_ghosted, parameters.axisymmetric, reference_cells());
     else if (current_table.empty())
       fill_table<dim>(current_table, *current_mapping, fe, quadrature,
                       update_JxW_values | update_quadrature_points, dof_handler, temperature_ghosted,

@@ -118,11 +118,12 @@ namespace anvil
     step_sources.reinit(locally_owned_dofs, mpi_communicator);
     if (!heat_source)
       return;
-    if (const auto *table = current_cells())
+    if (current_mapping)
       {
         // The worker's sums below from the configuration's table (FE_Q's
         // values at the points are the reference ones): no FEValues per cell.
-        thermal::CurrentWeights<dim> w(*table, get_mapping(), fe, quadrature, parameters.axisymmetric);
+        thermal::CurrentWeights<dim> w([this]() -> const thermal::CellTable & { return *current_cells(); },
+                                       get_mapping(), fe, quadrature, parameters.axisymmetric);
         const auto        &shape = reference_cells().shape;
         const unsigned int n_q = quadrature.size(), n_dofs = fe.n_dofs_per_cell();
         thermal::CopyData  c(n_dofs);

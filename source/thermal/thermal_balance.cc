@@ -98,9 +98,10 @@ namespace anvil
               }
           }
     };
-    if (const auto *table = current_cells())
+    if (current_mapping)
       {
-        thermal::CurrentWeights<dim> w(*table, get_mapping(), fe, quadrature, parameters.axisymmetric);
+        thermal::CurrentWeights<dim> w([this]() -> const thermal::CellTable & { return *current_cells(); },
+                                       get_mapping(), fe, quadrature, parameters.axisymmetric);
         sum([&](const auto &cell) { w.reinit(cell); }, [&](const unsigned int q) { return w.point(q); },
             [&](const double s, const unsigned int q) { return s * w.JxW[q] * w.axis_weight[q]; });
       }
@@ -169,9 +170,10 @@ namespace anvil
   template <int dim>
   double ThermalProblem<dim>::integrate(const HeatSource &source) const
   {
-    if (const auto *table = current_cells())
+    if (current_mapping)
       {
-        thermal::CurrentWeights<dim> w(*table, get_mapping(), fe, quadrature, parameters.axisymmetric);
+        thermal::CurrentWeights<dim> w([this]() -> const thermal::CellTable & { return *current_cells(); },
+                                       get_mapping(), fe, quadrature, parameters.axisymmetric);
         double                       total = 0;
         for (const auto &cell : dof_handler.active_cell_iterators())
           if (cell->is_locally_owned())

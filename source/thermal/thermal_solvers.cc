@@ -71,15 +71,10 @@ namespace anvil
     const auto         groups = exchange.couplings();
     if (exchange_pattern_current && covers(groups))
       return;
-    {
-      const DynamicSparsityPattern dsp = exchange_sparsity(groups);
-      newton_matrix.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
-      // (DynamicSparsityPattern is not copied by assignment.)
-      exchange_pattern.reinit(dsp.n_rows(), dsp.n_cols(), locally_relevant_dofs);
-      for (const auto i : locally_owned_dofs)
-        for (unsigned int k = 0; k < dsp.row_length(i); ++k)
-          exchange_pattern.add(i, dsp.column_number(i, k));
-    }
+    // Built where covers() reads it (its rows of ghost dofs, which the
+    // matrices ignore, too): no copy.
+    exchange_sparsity(groups, exchange_pattern);
+    newton_matrix.reinit(locally_owned_dofs, locally_owned_dofs, exchange_pattern, mpi_communicator);
     tangent_matrix.reinit(newton_matrix);
     tangent_positions_values = nullptr; // its entries moved (thermal_assembly.cc)
     mass_in_pattern.reinit(newton_matrix);

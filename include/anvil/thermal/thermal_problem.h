@@ -22,6 +22,7 @@
 #include <anvil/core/named_values.h>
 #include <anvil/thermal/cell_table.h>
 
+#include <array>
 #include <functional>
 #include <map>
 #include <memory>
@@ -405,8 +406,8 @@ namespace anvil
     /// cell_pattern with, in the rows owned here, every pair of dofs of each
     /// of @p groups and of the masters' cell neighbours (the faces a sliding
     /// slave reaches next: fewer rebuilds of the pattern).
-    dealii::DynamicSparsityPattern
-    exchange_sparsity(const std::vector<std::vector<dealii::types::global_dof_index>> &groups) const;
+    void exchange_sparsity(const std::vector<std::vector<dealii::types::global_dof_index>> &groups,
+                           dealii::DynamicSparsityPattern &dsp) const;
     /// Whether exchange_pattern has every pair of each of @p groups (all
     /// processes); the groups found covered are remembered (covered_groups).
     bool covers(const std::vector<std::vector<dealii::types::global_dof_index>> &groups);
@@ -443,6 +444,13 @@ namespace anvil
     /// mechanics is Q1, what MappingQ1Eulerian::get_vertices computes per
     /// call: the Q1 conduction kernel's input (thermal_assembly.cc).
     std::vector<dealii::Point<dim>> moved_vertices;
+    /// The positions of each vertex's displacement dofs in the ghosted
+    /// displacement's local array (by vertex index, −1: no owned cell has
+    /// it), for the layout vertex_dofs_map of the numbering of vertex_dofs_of.
+    std::vector<std::array<int, dim>>  vertex_dofs;
+    std::unique_ptr<Epetra_BlockMap>   vertex_dofs_map;
+    const dealii::DoFHandler<dim>     *vertex_dofs_of = nullptr;
+    dealii::types::global_dof_index    vertex_dofs_n  = 0;
     /// Where each owned cell's tangent entries sit in Epetra's CRS value
     /// array (active cell index × n_dofs², −1: not found yet, −2: the cell
     /// adds another way), for the value array tangent_positions_values.
