@@ -469,7 +469,7 @@ namespace anvil
   template <int dim>
   void Geometry<dim>::create(parallel::DistributedTriangulationBase<dim> &triangulation) const
   {
-    if (auto *p4est = dynamic_cast<parallel::DistributedTriangulationBase<dim> *>(&triangulation))
+    if (auto *p4est = dynamic_cast<parallel::distributed::Triangulation<dim> *>(&triangulation))
       {
         create_coarse(*p4est);
         check_size(triangulation.n_global_active_cells());
@@ -497,7 +497,7 @@ namespace anvil
   void Geometry<dim>::load(parallel::DistributedTriangulationBase<dim> &triangulation,
                            const std::string                           &file) const
   {
-    if (auto *p4est = dynamic_cast<parallel::DistributedTriangulationBase<dim> *>(&triangulation))
+    if (auto *p4est = dynamic_cast<parallel::distributed::Triangulation<dim> *>(&triangulation))
       {
         // p4est saves the refinement of the coarse mesh, not the vertices.
         create_coarse(*p4est);

@@ -1,12 +1,14 @@
 // Geometry/Partition = per body: every body cut into as many slabs as there
 // are processes (include/anvil/geometry/partition.h says why).
 #include <deal.II/base/mpi.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/tria_description.h>
 
 #include <anvil/core/instantiate.h>
 #include <anvil/geometry/partition.h>
 
 #include <algorithm>
+#include <map>
 #include <numeric>
 
 namespace anvil
@@ -26,26 +28,35 @@ namespace anvil
   template <int dim>
   std::vector<unsigned int> partition_per_body(Triangulation<dim> &serial, const unsigned int n_parts)
   {
-    // Union-find over vertices: the cells of one body share vertices.
-    std::vector<unsigned int> parent(serial.n_vertices());
+    // Union-find over (body, vertex): the cells of one body share vertices.
+    // Blocks that touch may share vertices too (merged meshes), so a body is
+    // also one material id.
+    std::map<std::pair<types::material_id, unsigned int>, unsigned int> node_of;
+    const auto node = [&](const auto &cell, const unsigned int v) {
+      return node_of.emplace(std::make_pair(cell->material_id(), cell->vertex_index(v)), node_of.size())
+        .first->second;
+    };
+    for (const auto &cell : serial.active_cell_iterators())
+      for (const unsigned int v : cell->vertex_indices())
+        node(cell, v);
+    std::vector<unsigned int> parent(node_of.size());
     std::iota(parent.begin(), parent.end(), 0u);
     for (const auto &cell : serial.active_cell_iterators())
       for (const unsigned int v : cell->vertex_indices())
         {
-          const unsigned int a = find_root(parent, cell->vertex_index(0));
-          const unsigned int b = find_root(parent, cell->vertex_index(v));
+          const unsigned int a = find_root(parent, node(cell, 0));
+          const unsigned int b = find_root(parent, node(cell, v));
           if (a != b)
             parent[std::max(a, b)] = std::min(a, b);
         }
 
-    std::vector<unsigned int>                  component(serial.n_active_cells());
-    std::vector<std::vector<Point<dim>>>       centers; // per component, by cell
-    std::vector<std::vector<unsigned int>>     cells;   // active indices per component
-    std::vector<unsigned int>                  root_to_component(serial.n_vertices(),
-                                                                 numbers::invalid_unsigned_int);
+    std::vector<unsigned int>              component(serial.n_active_cells());
+    std::vector<std::vector<Point<dim>>>   centers; // per component, by cell
+    std::vector<std::vector<unsigned int>> cells;   // active indices per component
+    std::vector<unsigned int> root_to_component(parent.size(), numbers::invalid_unsigned_int);
     for (const auto &cell : serial.active_cell_iterators())
       {
-        unsigned int &c = root_to_component[find_root(parent, cell->vertex_index(0))];
+        unsigned int &c = root_to_component[find_root(parent, node(cell, 0))];
         if (c == numbers::invalid_unsigned_int)
           {
             c = cells.size();
@@ -98,6 +109,10 @@ namespace anvil
   {
     const MPI_Comm comm = triangulation.get_communicator();
     partition_per_body(serial, Utilities::MPI::n_mpi_processes(comm));
+    // The description takes the cells of the refined levels by their level
+    // subdomain ids: those of the parents follow from their children.
+    if (serial.n_levels() > 1)
+      GridTools::partition_multigrid_levels(serial);
     const auto description =
       TriangulationDescription::Utilities::create_description_from_triangulation(serial, comm);
     triangulation.create_triangulation(description);

@@ -15,8 +15,8 @@ namespace anvil
    * along its own longest axis, so that every process holds a share of every
    * body and of every contact surface.
    *
-   * A body is a connected component of the active cells through shared
-   * vertices (blocks that touch keep their own vertices, so they stay apart).
+   * A body is a connected component, through shared vertices, of the active
+   * cells of one material id (blocks that touch may share vertices).
    * Sets the subdomain id of every active cell of @p serial; returns the
    * component of every active cell (by active_cell_index()).
    */
