@@ -7,10 +7,11 @@ every body, and the answer does not depend on it.
     tolerance (1e-8 of each file's largest value), the same steps.
  2. The contact strip (contrib/bench/contact_strip.prm, 100 cells along the
     upper strip, GMRES + AMG at 1e-10) the same way.
- 3. A restart with the per-body partition: two_blocks stopped half way on 2
-    processes and resumed on 2 ends with the uninterrupted run's answer (1e-9).
-    Resumed on 1 process, or from p4est's checkpoint, it is refused with one
-    line naming Output/Restart from (exit 2).
+ 3. A restart with the per-body partition: two_blocks stopped half way and
+    resumed (1 process) ends with the uninterrupted run's answer (1e-9). On 2
+    processes (deal.II 9.4's fully distributed load misplaces the cells' data
+    there), on another process count, or from p4est's checkpoint, the restart
+    is refused with one line naming Output/Restart from (exit 2).
  4. A bad Geometry/Partition is one error line naming the entry (exit 2)."""
 import os
 import subprocess
@@ -39,14 +40,15 @@ check(s1["steps"] == s2["steps"] and s1["newton_iterations"] == s2["newton_itera
 histories_agree(o1, o2, ["reactions.csv", "energy.csv"], 1e-8, "strip np 1 (p4est) vs np 2 (per body)")
 
 half = ["Time/End time=5e-4"]
-out_full, full, _ = run("prm/two_blocks.prm", quiet + short + per_body, np=2, name="part_full")
-out_half, _, _ = run("prm/two_blocks.prm", quiet + half + per_body, np=2, name="part_half")
+out_full, full, _ = run("prm/two_blocks.prm", quiet + short + per_body, name="part_full")
+out_half, _, _ = run("prm/two_blocks.prm", quiet + half + per_body, name="part_half")
 _, resumed, _ = run("prm/two_blocks.prm", quiet + short + per_body + ["Output/Restart from=" + out_half + "/checkpoint"],
-                    np=2, name="part_half")
+                    name="part_half")
 check(resumed["steps"] == full["steps"], "resumed: %d steps in all, as the full run" % resumed["steps"])
 for k, v in full["quantities_of_interest"].items():
-    close(resumed["quantities_of_interest"][k], v, 1e-9, "per body, resumed on 2 processes: " + k, atol=1e-14)
+    close(resumed["quantities_of_interest"][k], v, 1e-9, "per body, resumed on 1 process: " + k, atol=1e-14)
 histories_agree(out_full, out_half, ["reactions.csv"], 1e-9, "per body resumed vs uninterrupted")
+out_half2, _, _ = run("prm/two_blocks.prm", quiet + half + per_body, np=2, name="part_half2")
 
 
 def one_line(sets, np, expected, what):
@@ -57,14 +59,16 @@ def one_line(sets, np, expected, what):
         cmd = ["mpirun", "-np", str(np), "--oversubscribe"] + cmd
     env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
     p = subprocess.run(cmd, capture_output=True, text=True, env=env)
-    lines = p.stderr.strip().splitlines()
-    check(p.returncode == 2 and len(lines) == 1 and all(e in p.stderr for e in expected),
-          "%s: exit %d, %r" % (what, p.returncode, p.stderr.strip()))
+    # anvil's own lines (mpirun adds its banner about the exit code).
+    lines = [x for x in p.stderr.strip().splitlines() if x.startswith("anvil")]
+    check(p.returncode == 2 and len(lines) == 1 and all(e in lines[0] for e in expected),
+          "%s: exit %d, %r" % (what, p.returncode, lines))
 
 
-ckpt = out_half + "/checkpoint"
-one_line(quiet + per_body + ["Output/Restart from=" + ckpt, "Output/Directory=" + out_half + "_np1"], 1,
-         ["Output/Restart from", "per body", "2 processes"], "per-body checkpoint resumed on 1 process")
+one_line(quiet + per_body + ["Output/Restart from=" + out_half2 + "/checkpoint", "Output/Directory=" + out_half2 + "_r"],
+         2, ["Output/Restart from", "per body", "only on 1 process"], "per-body checkpoint resumed on 2 processes")
+one_line(quiet + per_body + ["Output/Restart from=" + out_half2 + "/checkpoint", "Output/Directory=" + out_half2 + "_r1"],
+         1, ["Output/Restart from", "per body", "2 processes"], "2 processes' per-body checkpoint resumed on 1")
 out_p4est, _, _ = run("prm/two_blocks.prm", quiet + half, name="part_p4est_half")
 one_line(quiet + per_body + ["Output/Restart from=" + out_p4est + "/checkpoint",
                              "Output/Directory=" + out_p4est + "_pb"], 1,
