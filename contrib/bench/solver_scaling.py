@@ -18,7 +18,14 @@ Cases:
   strip contact: contrib/bench/contact_strip.prm, n cells along the upper strip
 
 Usage: solver_scaling.py BUILD_DIR OUT_DIR [--small] [--large] [--cases 2d,3d,strip]
-       [--solvers iterative,direct] [--sizes '2d:64,128;3d:10'] [--np 2] [--set ENTRY=VALUE ...]
+       [--solvers iterative,direct] [--sizes '2d:64,128;3d:10'] [--np 2] [--partition 'per body']
+       [--set ENTRY=VALUE ...]
+
+--partition sets Geometry/Partition (default: the scene's, p4est's space-filling
+curve); 'per body' cuts every body in np slabs, so that the strip's contact
+surface is shared by the processes instead of being their boundary (issue 15).
+Its runs are named ..._perbody. "user s" is the CPU seconds of all processes,
+"user/rank" per process.
 
 The environment reaches every run: ANVIL_ML_PARAMETERS sets ML's parameters
 (e.g. 'smoother: type (level 0)=IFPACK; ...') and ANVIL_ISOCHORIC_MODES=1 adds
@@ -63,11 +70,13 @@ def case_sets(case, n):
         "Mechanics/Linear solver/Tolerance=1e-8"]
 
 
-def run(build, out, case, n, solver, np, extra=()):
+def run(build, out, case, n, solver, np, extra=(), partition=""):
     scene, sets = case_sets(case, n)
-    name = "%s_%d_%s_np%d" % (case, n, solver, np)
+    name = "%s_%d_%s_np%d" % (case, n, solver, np) + ("_" + partition.replace(" ", "") if partition else "")
     directory = os.path.join(out, name)
     sets = sets + list(extra) + ["Mechanics/Linear solver/Type=" + solver, "Output/Directory=" + directory]
+    if partition:
+        sets.append("Geometry/Partition=" + partition)
     cmd = ["/usr/bin/time", "-f", "%U", "-o", directory + ".time"]
     if np > 1:
         cmd += ["mpirun", "--oversubscribe", "-np", str(np)]
@@ -85,13 +94,13 @@ def run(build, out, case, n, solver, np, extra=()):
         return None
     w = s["wall_time_per_phase"]
     newton = max(1, s["newton_iterations"])
-    r = dict(case=case, n=n, solver=solver, np=np, dofs=s["dofs"], status=s["status"], newton=s["newton_iterations"],
+    r = dict(case=case, n=n, solver=solver, np=np, partition=partition or "default", dofs=s["dofs"], status=s["status"], newton=s["newton_iterations"],
              krylov=s["linear_iterations"] / newton, user=user, memory=s["memory_per_dof_bytes"],
              per_newton=(w.get("Mechanics: assembly", 0) + w.get("Mechanics: linear solve", 0)) / newton,
              solve=w.get("Mechanics: linear solve", 0) / newton, assembly=w.get("Mechanics: assembly", 0) / newton)
-    print("%-5s %5d %-9s %3d %9d %9s %7d %9.1f %10.3f %10.3f %10.3f %9.1f %8.0f" % (
+    print("%-5s %5d %-9s %3d %9d %9s %7d %9.1f %10.3f %10.3f %10.3f %9.1f %9.1f %8.0f" % (
         case, n, solver, np, r["dofs"], r["status"][:9], r["newton"], r["krylov"], r["assembly"], r["solve"],
-        r["per_newton"], r["user"], r["memory"]), flush=True)
+        r["per_newton"], r["user"], r["user"] / np, r["memory"]), flush=True)
     return r
 
 
@@ -116,6 +125,7 @@ def main():
     cases = ["2d", "3d", "strip"]
     solvers = ["iterative", "direct"]
     np = 1
+    partition = ""
     extra = [args[i + 1] for i, a in enumerate(args) if a == "--set"]
     for i, a in enumerate(args):
         if a == "--cases":
@@ -124,6 +134,8 @@ def main():
             solvers = args[i + 1].split(",")
         if a == "--np":
             np = int(args[i + 1])
+        if a == "--partition":
+            partition = args[i + 1]
     sizes = {"2d": [64, 128, 256] + ([512] if large else []), "3d": [6, 8, 10, 12, 20, 30] + ([40, 69] if large else []),
              "strip": [1000, 4000, 16000]}
     if small:
@@ -133,16 +145,16 @@ def main():
             for item in args[i + 1].split(";"):
                 case, ns = item.split(":")
                 sizes[case] = [int(n) for n in ns.split(",")]
-    print("%-5s %5s %-9s %3s %9s %9s %7s %9s %10s %10s %10s %9s %8s" % (
+    print("%-5s %5s %-9s %3s %9s %9s %7s %9s %10s %10s %10s %9s %9s %8s" % (
         "case", "n", "solver", "np", "DoFs", "status", "Newton", "Krylov/sv", "asm s/it", "solve s/it",
-        "s/Newton", "user s", "B/DoF"))
+        "s/Newton", "user s", "user/rank", "B/DoF"))
     results = []
     for case in cases:
         for n in sizes[case]:
             for solver in solvers:
                 if solver == "direct" and n > DIRECT_LIMIT[case]:
                     continue
-                r = run(build, out, case, n, solver, np, extra)
+                r = run(build, out, case, n, solver, np, extra, partition)
                 if r:
                     results.append(r)
     # Appended (one run may add sizes to another's): the input of scaling_figure.py.

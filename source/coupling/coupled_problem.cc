@@ -105,7 +105,7 @@ namespace anvil
   }
 
   template <int dim>
-  void CoupledProblem<dim>::setup(const parallel::distributed::Triangulation<dim> &tria,
+  void CoupledProblem<dim>::setup(const parallel::DistributedTriangulationBase<dim> &tria,
                                   TimerOutput &timer, const bool quiet)
   {
     triangulation = &tria;

@@ -46,7 +46,7 @@ namespace anvil
 
     // The thermal strains and T-dependent laws need absolute temperatures:
     // T(x, t) at every node at t = 0 and at the end time (where a ramp ends).
-    void check(const parallel::distributed::Triangulation<dim> &tria, const Scene &scene,
+    void check(const parallel::DistributedTriangulationBase<dim> &tria, const Scene &scene,
                const double end_time) const override
     {
       std::string problem;

@@ -28,7 +28,7 @@ namespace anvil
   } // namespace
 
   template <int dim>
-  void CoupledProblem<dim>::check_temperatures(const parallel::distributed::Triangulation<dim> &tria,
+  void CoupledProblem<dim>::check_temperatures(const parallel::DistributedTriangulationBase<dim> &tria,
                                                const Scene &scene, const double end_time,
                                                const bool uniform_temperature) const
   {

@@ -11,6 +11,7 @@
 #include <anvil/core/instantiate.h>
 #include <anvil/core/scene.h>
 #include <anvil/geometry/geometry.h>
+#include <anvil/geometry/partition.h>
 
 #include <algorithm>
 #include <cmath>
@@ -260,6 +261,16 @@ namespace anvil
     prm.declare_entry("Circumferential cells", "0", Patterns::Integer(0),
                       "Cells around annulus and 3D tube; 0 chooses cells of about square shape (a "
                       "multiple of 4), otherwise at least 3.");
+    prm.declare_entry("Partition", "space-filling curve",
+                      Patterns::Selection("space-filling curve|per body"),
+                      "How the cells are shared among the processes: space-filling curve "
+                      "(p4est's: each body's coarse cells are numbered in a row, so two bodies "
+                      "on two processes give one body each, and their contact surface is the "
+                      "partition boundary) or per body (every body cut into as many slabs of "
+                      "equal cell count as there are processes, along its longest axis: every "
+                      "process holds a share of every body and contact surface; the whole "
+                      "refined mesh is built on each process once, and a checkpoint restarts "
+                      "only on as many processes as wrote it).");
     prm.declare_entry("Mesh file", "", Patterns::Anything(),
                       "Type = gmsh: path of an ASCII .msh file (format 2.2 or 4.1, coordinates in mm, "
                       "quadrilaterals/hexahedra); relative to the scene file's directory.");
@@ -296,9 +307,13 @@ namespace anvil
     axial_cells           = prm.get_integer("Axial cells");
     circumferential_cells = prm.get_integer("Circumferential cells");
     mesh_file             = trim(prm.get("Mesh file"));
+    partition             = trim(prm.get("Partition"));
     const std::string block_text = prm.get("Blocks");
     prm.leave_subsection();
 
+    if (partition != "space-filling curve" && partition != "per body")
+      scene.fail("Geometry/Partition", "= '" + partition +
+                                         "': expected 'space-filling curve' or 'per body'");
     blocks.clear();
     boundaries.clear();
     bodies.clear();
@@ -405,11 +420,17 @@ namespace anvil
   }
 
   template <int dim>
-  void Geometry<dim>::create_coarse(parallel::distributed::Triangulation<dim> &triangulation) const
+  std::unique_ptr<parallel::DistributedTriangulationBase<dim>>
+  Geometry<dim>::make_triangulation(const MPI_Comm communicator) const
   {
-    // p4est needs the coarse mesh as a whole: build it serially, then copy.
-    // Same smoothing as the target, since copy_triangulation copies it.
-    Triangulation<dim> serial(triangulation.get_mesh_smoothing());
+    if (partition == "per body")
+      return std::make_unique<parallel::fullydistributed::Triangulation<dim>>(communicator);
+    return std::make_unique<parallel::distributed::Triangulation<dim>>(communicator);
+  }
+
+  template <int dim>
+  void Geometry<dim>::create_serial_coarse(Triangulation<dim> &serial) const
+  {
     if (type == "blocks")
       create_blocks(serial);
     else if (type == "annulus" || type == "tube")
@@ -418,10 +439,14 @@ namespace anvil
       create_bar(serial);
     else
       create_gmsh(serial);
-
     if (random_distortion > 0)
       GridTools::distort_random(random_distortion, serial, true, 42);
-    triangulation.copy_triangulation(serial);
+  }
+
+  template <int dim>
+  void Geometry<dim>::copy_manifolds(const Triangulation<dim> &serial,
+                                     Triangulation<dim>       &triangulation) const
+  {
     // Manifold ids of cells and faces are copied with the mesh; the manifold
     // objects are set again explicitly (ours are Spherical/Cylindrical, which
     // hold no reference to the serial triangulation).
@@ -431,16 +456,69 @@ namespace anvil
   }
 
   template <int dim>
-  void Geometry<dim>::create(parallel::distributed::Triangulation<dim> &triangulation) const
+  void Geometry<dim>::create_coarse(parallel::DistributedTriangulationBase<dim> &triangulation) const
   {
-    create_coarse(triangulation);
-    check_size(triangulation.n_global_active_cells());
-    triangulation.refine_global(global_refinements);
-    finish_loaded(triangulation);
+    // p4est needs the coarse mesh as a whole: build it serially, then copy.
+    // Same smoothing as the target, since copy_triangulation copies it.
+    Triangulation<dim> serial(triangulation.get_mesh_smoothing());
+    create_serial_coarse(serial);
+    triangulation.copy_triangulation(serial);
+    copy_manifolds(serial, triangulation);
   }
 
   template <int dim>
-  void Geometry<dim>::finish_loaded(parallel::distributed::Triangulation<dim> &triangulation) const
+  void Geometry<dim>::create(parallel::DistributedTriangulationBase<dim> &triangulation) const
+  {
+    if (auto *p4est = dynamic_cast<parallel::distributed::Triangulation<dim> *>(&triangulation))
+      {
+        create_coarse(*p4est);
+        check_size(triangulation.n_global_active_cells());
+        triangulation.refine_global(global_refinements);
+        transform(triangulation);
+      }
+    else
+      {
+        // Per body: the whole refined (and transformed) mesh on every
+        // process, cut by partition_per_body, each process keeping its share.
+        Triangulation<dim> serial;
+        create_serial_coarse(serial);
+        check_size(serial.n_active_cells());
+        serial.refine_global(global_refinements);
+        transform(serial);
+        create_per_body(serial, dynamic_cast<parallel::fullydistributed::Triangulation<dim> &>(
+                                  triangulation));
+        copy_manifolds(serial, triangulation);
+      }
+    throw_recorded_input_error(triangulation.get_communicator());
+    check_cells(triangulation);
+  }
+
+  template <int dim>
+  void Geometry<dim>::load(parallel::DistributedTriangulationBase<dim> &triangulation,
+                           const std::string                           &file) const
+  {
+    if (auto *p4est = dynamic_cast<parallel::distributed::Triangulation<dim> *>(&triangulation))
+      {
+        // p4est saves the refinement of the coarse mesh, not the vertices.
+        create_coarse(*p4est);
+        triangulation.load(file);
+        transform(triangulation);
+      }
+    else
+      {
+        // A fully distributed triangulation saves its cells with their
+        // (transformed) vertices; only the manifold objects are set again.
+        triangulation.load(file);
+        Triangulation<dim> serial;
+        create_serial_coarse(serial);
+        copy_manifolds(serial, triangulation);
+      }
+    throw_recorded_input_error(triangulation.get_communicator());
+    check_cells(triangulation);
+  }
+
+  template <int dim>
+  void Geometry<dim>::transform(Triangulation<dim> &triangulation) const
   {
     if (!transformation.empty())
       GridTools::transform(
@@ -451,8 +529,6 @@ namespace anvil
           return q;
         },
         triangulation);
-    throw_recorded_input_error(triangulation.get_communicator());
-    check_cells(triangulation);
   }
 
   template <int dim>

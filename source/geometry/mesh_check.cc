@@ -152,7 +152,7 @@ namespace anvil
   }
 
   template <int dim>
-  void Geometry<dim>::check_cells(const parallel::distributed::Triangulation<dim> &tria) const
+  void Geometry<dim>::check_cells(const parallel::DistributedTriangulationBase<dim> &tria) const
   {
     // The Jacobian at every vertex of every cell must be positive: a cell a
     // Transformation (or the file's node order) turned over would otherwise be
@@ -191,7 +191,7 @@ namespace anvil
   template void Geometry<dim>::check_msh22(std::istream &) const;                                  \
   template void Geometry<dim>::check_size(unsigned int) const;                                     \
   template void Geometry<dim>::check_cells(                                                        \
-    const parallel::distributed::Triangulation<dim> &) const;
+    const parallel::DistributedTriangulationBase<dim> &) const;
   ANVIL_INSTANTIATE(INSTANTIATE)
 #undef INSTANTIATE
 } // namespace anvil

@@ -6,11 +6,21 @@
 #include <anvil/core/instantiate.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
+#include <algorithm>
 #include <cstring>
 
 namespace anvil
 {
   using namespace dealii;
+
+  namespace
+  {
+    template <int dim>
+    bool is_p4est(const parallel::DistributedTriangulationBase<dim> &triangulation)
+    {
+      return dynamic_cast<const parallel::distributed::Triangulation<dim> *>(&triangulation) != nullptr;
+    }
+  } // namespace
 
   template <int dim>
   std::vector<TrilinosWrappers::MPI::Vector *> MechanicalProblem<dim>::checkpoint_targets()
@@ -41,10 +51,27 @@ namespace anvil
 
     // Material points: per cell, n_q blocks of (size, values).
     const unsigned int n_q = quadrature.size();
-    auto &tria = const_cast<parallel::distributed::Triangulation<dim> &>(triangulation);
+    auto &tria = const_cast<parallel::DistributedTriangulationBase<dim> &>(triangulation);
+    // A fully distributed triangulation (Geometry/Partition = per body) saves
+    // only fixed-size data (deal.II 9.4): every cell's block is padded to the
+    // largest one, which its sizes make self-describing on reading.
+    const bool         fixed = !is_p4est(triangulation);
+    std::size_t        padded = 0;
+    if (fixed)
+      {
+        for (const auto &cell : triangulation.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              std::size_t n = 2 * n_q;
+              for (unsigned int q = 0; q < n_q; ++q)
+                n += points(cell, q)->save_state().size();
+              padded = std::max(padded, n);
+            }
+        padded = Utilities::MPI::max(padded, mpi_communicator);
+      }
     checkpoint_handle = tria.register_data_attach(
-      [this, n_q](const typename Triangulation<dim>::cell_iterator &cell,
-                  const typename Triangulation<dim>::CellStatus) {
+      [this, n_q, padded](const typename Triangulation<dim>::cell_iterator &cell,
+                          const typename Triangulation<dim>::CellStatus) {
         std::vector<double> data;
         for (unsigned int q = 0; q < n_q; ++q)
           {
@@ -55,11 +82,12 @@ namespace anvil
         // The temperature each point ended its last step at (heat scenes).
         for (unsigned int q = 0; q < n_q; ++q)
           data.push_back(material_temperature_old(cell, q));
+        data.resize(std::max(data.size(), padded), 0.);
         std::vector<char> bytes(data.size() * sizeof(double));
         std::memcpy(bytes.data(), data.data(), bytes.size());
         return bytes;
       },
-      /*returns_variable_size_data=*/true);
+      /*returns_variable_size_data=*/!fixed);
   }
 
   template <int dim>
@@ -71,14 +99,14 @@ namespace anvil
     transfer.deserialize(outputs);
 
     const unsigned int n_q  = quadrature.size();
-    auto              &tria = const_cast<parallel::distributed::Triangulation<dim> &>(triangulation);
+    auto              &tria = const_cast<parallel::DistributedTriangulationBase<dim> &>(triangulation);
     // Attached data sets are identified by the order of registration: the
     // SolutionTransfer registered first (at save and in deserialize()), ours
     // second, so registering again yields our handle.
     const unsigned int handle = tria.register_data_attach(
       [](const typename Triangulation<dim>::cell_iterator &,
          const typename Triangulation<dim>::CellStatus) { return std::vector<char>(); },
-      true);
+      /*returns_variable_size_data=*/is_p4est(triangulation));
     tria.notify_ready_to_unpack(
       handle,
       [this, n_q](const typename Triangulation<dim>::cell_iterator &cell,

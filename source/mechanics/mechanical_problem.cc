@@ -34,7 +34,7 @@ namespace anvil
 
   template <int dim>
   MechanicalProblem<dim>::MechanicalProblem(
-    const parallel::distributed::Triangulation<dim>                        &triangulation,
+    const parallel::DistributedTriangulationBase<dim>                        &triangulation,
     const Parameters                                                        &parameters,
     const BoundaryConditions<dim>                                           &boundary_conditions,
     const std::map<types::material_id, std::shared_ptr<const MaterialModel>> &materials,

@@ -87,7 +87,7 @@ namespace anvil
           try
             {
               const auto c =
-                GridTools::find_active_cell_around_point(mapping, s.triangulation, p.point);
+                GridTools::find_active_cell_around_point(mapping, static_cast<const Triangulation<dim> &>(s.triangulation), p.point);
               found = c.first.state() == IteratorState::valid && !c.first->is_artificial();
             }
           catch (...)

@@ -139,6 +139,29 @@ namespace anvil
     refuse_if("coupling", "Physics/Coupling", coupling);
     refuse_if("bodies", "Bodies/Names", joined(scene.body_names()));
     refuse_if("contact_pairs", "Contact/Pairs", joined(scene.contact_pair_names()));
+    // The two kinds save different files (p4est: the refinement of the coarse
+    // mesh; fully distributed: each process's cells); checkpoints before
+    // Geometry/Partition existed are p4est's.
+    if (state.entries.count("partition") || geometry.partition_kind() != "space-filling curve")
+      refuse_if("partition", "Geometry/Partition", geometry.partition_kind());
+    if (geometry.partition_kind() == "per body")
+      {
+        const std::string here = std::to_string(Utilities::MPI::n_mpi_processes(mpi_communicator));
+        const auto        it   = state.entries.find("processes");
+        // deal.II 9.4's fullydistributed load puts the cells' saved data in
+        // the wrong places on several processes (on one it is right): refused
+        // rather than resumed with a wrong state.
+        if (here != "1")
+          scene.fail(path, "= '" + restart_directory + "': Geometry/Partition = per body resumes "
+                             "only on 1 process (deal.II 9.4's fully distributed load misplaces "
+                             "the cells' data on several); this run has " + here +
+                             ": rerun from t = 0 or resume on 1 process");
+        if (it == state.entries.end() || it->second != here)
+          scene.fail(path, "= '" + restart_directory + "' was written by " +
+                             (it == state.entries.end() ? std::string("(unknown)") : it->second) +
+                             " processes with Geometry/Partition = per body, which restarts only "
+                             "on as many; this run has " + here);
+      }
     // Every number the restart will read, read now: a damaged file is refused
     // before any work, not halfway through setting up.
     try
@@ -151,7 +174,7 @@ namespace anvil
                                  "it (size and checksum differ: damaged or incomplete)");
             }
           else if (key != "scene" && key != "coupling" && key != "bodies" &&
-                   key != "contact_pairs" && key.rfind("output.", 0) != 0)
+                   key != "contact_pairs" && key != "partition" && key.rfind("output.", 0) != 0)
             StateFile::to_number(key, value);
         for (const char *key : counters)
           {
@@ -195,7 +218,7 @@ namespace anvil
       physics.mechanics()->prepare_checkpoint();
     if (physics.heat())
       physics.heat()->prepare_checkpoint();
-    triangulation.save(dir + "/mesh");
+    triangulation->save(dir + "/mesh");
     std::ostringstream contact_state; // collective
     if (!physics.contact_problem().empty())
       physics.contact_problem().save(contact_state);
@@ -248,6 +271,8 @@ namespace anvil
     entry("coupling", coupling);
     entry("bodies", joined(scene.body_names()));
     entry("contact_pairs", joined(scene.contact_pair_names()));
+    entry("partition", geometry.partition_kind());
+    entry("processes", Utilities::MPI::n_mpi_processes(mpi_communicator));
     entry("time", t);
     entry("time_step", dt);
     entry("steps", statistics.steps);

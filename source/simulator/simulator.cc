@@ -114,10 +114,10 @@ namespace anvil
     : scene(scene)
     , mpi_communicator(communicator)
     , pcout(std::cout, Utilities::MPI::this_mpi_process(communicator) == 0)
-    , triangulation(communicator)
   {
     auto &prm = scene.parameters();
     geometry.parse_parameters(prm, scene);
+    triangulation = geometry.make_triangulation(communicator);
     // Bodies: every mesh body needs a material, every listed body must exist.
     for (const auto &[name, id] : geometry.body_names())
       if (std::find(scene.body_names().begin(), scene.body_names().end(), name) ==
@@ -242,20 +242,16 @@ namespace anvil
   {
     TimerOutput::Scope t(*timer, "Mesh");
     if (restart_directory.empty())
-      geometry.create(triangulation);
+      geometry.create(*triangulation);
     else
-      {
-        geometry.create_coarse(triangulation);
-        triangulation.load(restart_directory + "/mesh");
-        geometry.finish_loaded(triangulation);
-      }
+      geometry.load(*triangulation, restart_directory + "/mesh");
   }
 
   template <int dim>
   SimulationState<dim> Simulator<dim>::state(const double t, const unsigned int step,
                                              const bool last) const
   {
-    SimulationState<dim> s{scene,    mpi_communicator, triangulation, geometry, physics,
+    SimulationState<dim> s{scene,    mpi_communicator, *triangulation, geometry, physics,
                            coupling, output_dir,       statistics,    *timer};
     s.time      = t;
     s.step      = step;
@@ -300,8 +296,8 @@ namespace anvil
   template <int dim>
   void Simulator<dim>::check_against_mesh()
   {
-    physics.check_temperatures(triangulation, scene, time.end_time, !scheme->provides_temperature());
-    scheme->check(triangulation, scene, time.end_time);
+    physics.check_temperatures(*triangulation, scene, time.end_time, !scheme->provides_temperature());
+    scheme->check(*triangulation, scene, time.end_time);
     for (auto &o : outputs)
       o->check(state(0, 0));
   }
@@ -315,7 +311,7 @@ namespace anvil
                                           TimerOutput::wall_times);
     setup();
     check_against_mesh();
-    physics.setup(triangulation, *timer, quiet);
+    physics.setup(*triangulation, *timer, quiet);
     scheme->initialize(physics);
     double t  = 0;
     double dt = time.time_step;
@@ -499,7 +495,7 @@ namespace anvil
     if (quiet)
       return;
     pcout << "anvil: " << scene.filename() << ", " << dim << "D, "
-          << triangulation.n_global_active_cells() << " cells, ";
+          << triangulation->n_global_active_cells() << " cells, ";
     if (physics.mechanics())
       pcout << physics.mechanics()->n_dofs() << " displacement DoFs, ";
     if (physics.heat())

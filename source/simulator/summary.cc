@@ -33,7 +33,7 @@ namespace anvil
     s.set("status", status);
     s.set("dimension", dim);
     s.set("processes", Utilities::MPI::n_mpi_processes(mpi_communicator));
-    s.set("cells", triangulation.n_global_active_cells());
+    s.set("cells", triangulation->n_global_active_cells());
     s.set("coupling", coupling);
     s.set("dofs", mechanical ? double(mechanical->n_dofs()) : 0.);
     if (thermal)

@@ -117,7 +117,7 @@ namespace anvil
   };
 
   template <int dim>
-  ThermalProblem<dim>::ThermalProblem(const parallel::distributed::Triangulation<dim> &triangulation,
+  ThermalProblem<dim>::ThermalProblem(const parallel::DistributedTriangulationBase<dim> &triangulation,
                                       const Parameters                                 &parameters,
                                       const ThermalBoundaryConditions<dim> &boundary_conditions,
                                       const std::map<types::material_id, ThermalMaterial> &materials,

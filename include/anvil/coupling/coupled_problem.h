@@ -101,14 +101,14 @@ namespace anvil
      * every body's yield stress survives (MaterialModel::strength_lost).
      * Throws one InputError on every process (temperature_check.cc).
      */
-    void check_temperatures(const dealii::parallel::distributed::Triangulation<dim> &triangulation,
+    void check_temperatures(const dealii::parallel::DistributedTriangulationBase<dim> &triangulation,
                             const Scene &scene, double end_time, bool uniform_temperature) const;
 
     /// Builds the problems on the mesh (after it exists); @p quiet silences log().
     /// With Heat/Initial temperature field = steady (or Method = steady) the
     /// temperature starts from the steady field at t = 0; if that Newton
     /// fails, initial_failure() says why (the run stops with results written).
-    void setup(const dealii::parallel::distributed::Triangulation<dim> &triangulation,
+    void setup(const dealii::parallel::DistributedTriangulationBase<dim> &triangulation,
                dealii::TimerOutput &timer, bool quiet);
     /// Notes for the user: rank 0, unless the scene is quiet.
     dealii::ConditionalOStream &log() { return *log_stream; }
@@ -204,7 +204,7 @@ namespace anvil
     std::map<dealii::types::material_id, ThermalMaterial> thermal_materials;
     bool                                                  with_mechanics = true, with_heat = false;
 
-    const dealii::parallel::distributed::Triangulation<dim> *triangulation = nullptr;
+    const dealii::parallel::DistributedTriangulationBase<dim> *triangulation = nullptr;
     std::unique_ptr<MechanicalProblem<dim>>                  mechanical;
     std::unique_ptr<ThermalProblem<dim>>                     thermal;
     ContactProblem<dim>                                      contact; // empty unless pairs

@@ -43,7 +43,7 @@ namespace anvil
     /// Before any work (--check and run), on the mesh: what the scheme itself
     /// sets that the mesh can refute (a given temperature that is not an
     /// absolute one at some node); throws InputError.
-    virtual void check(const dealii::parallel::distributed::Triangulation<dim> & /*triangulation*/,
+    virtual void check(const dealii::parallel::DistributedTriangulationBase<dim> & /*triangulation*/,
                        const Scene & /*scene*/, double /*end_time*/) const
     {}
 

@@ -4,6 +4,7 @@
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/types.h>
 #include <deal.II/distributed/tria.h>
+#include <deal.II/distributed/tria_base.h>
 
 #include <istream>
 
@@ -42,14 +43,22 @@ namespace anvil
     /// Reads the Geometry subsection; checks ranges and that the mesh file exists.
     void parse_parameters(dealii::ParameterHandler &prm, const Scene &scene);
 
-    /// Build the coarse mesh, name its parts, refine globally, transform.
-    void create(dealii::parallel::distributed::Triangulation<dim> &triangulation) const;
+    /// The triangulation Geometry/Partition asks for, empty: p4est's
+    /// (space-filling curve) or a fully distributed one (per body).
+    std::unique_ptr<dealii::parallel::DistributedTriangulationBase<dim>>
+    make_triangulation(MPI_Comm communicator) const;
 
-    /// Build only the coarse mesh (a checkpoint's triangulation.load() then
-    /// refines it as saved); call finish_loaded() afterwards.
-    void create_coarse(dealii::parallel::distributed::Triangulation<dim> &triangulation) const;
-    /// Apply the Transformation to a loaded (refined) mesh.
-    void finish_loaded(dealii::parallel::distributed::Triangulation<dim> &triangulation) const;
+    /// Build the coarse mesh, name its parts, refine globally, transform
+    /// (and, for a fully distributed triangulation, partition per body).
+    void create(dealii::parallel::DistributedTriangulationBase<dim> &triangulation) const;
+
+    /// Read the mesh a checkpoint saved in @p file into an empty triangulation
+    /// of the kind that saved it.
+    void load(dealii::parallel::DistributedTriangulationBase<dim> &triangulation,
+              const std::string                                   &file) const;
+
+    /// Geometry/Partition: "space-filling curve" or "per body".
+    const std::string &partition_kind() const { return partition; }
 
     const std::map<std::string, dealii::types::boundary_id> &boundary_names() const
     {
@@ -83,10 +92,19 @@ namespace anvil
     void create_ring(dealii::Triangulation<dim> &tria) const;
     void create_bar(dealii::Triangulation<dim> &tria) const;
     void create_gmsh(dealii::Triangulation<dim> &tria) const;
+    /// The coarse mesh of any type, randomly distorted if asked.
+    void create_serial_coarse(dealii::Triangulation<dim> &serial) const;
+    /// Build only the coarse mesh (p4est's load() then refines it as saved).
+    void create_coarse(dealii::parallel::DistributedTriangulationBase<dim> &triangulation) const;
+    /// Apply the Transformation to a refined mesh (p4est: after load() too).
+    void transform(dealii::Triangulation<dim> &triangulation) const;
+    /// The manifolds of the coarse mesh's curved parts, set on @p triangulation.
+    void copy_manifolds(const dealii::Triangulation<dim> &serial,
+                        dealii::Triangulation<dim>       &triangulation) const;
     // mesh_check.cc: refuse with one line what the run could not use.
     void check_msh22(std::istream &in) const;
     void check_size(unsigned int n_coarse_cells) const;
-    void check_cells(const dealii::parallel::distributed::Triangulation<dim> &tria) const;
+    void check_cells(const dealii::parallel::DistributedTriangulationBase<dim> &tria) const;
 
     std::string        type;
     std::vector<Block> blocks;
@@ -97,6 +115,7 @@ namespace anvil
     // gmsh
     std::string  mesh_file;
     unsigned int global_refinements = 0;
+    std::string  partition          = "space-filling curve";
     double       random_distortion  = 0;
     std::vector<std::shared_ptr<dealii::FunctionParser<dim>>> transformation;
     std::map<std::string, std::string> locations; // entry -> where the scene sets it

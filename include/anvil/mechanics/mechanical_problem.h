@@ -123,7 +123,7 @@ namespace anvil
       std::vector<dealii::Vector<double>>      max_values, min_values;
     };
 
-    MechanicalProblem(const dealii::parallel::distributed::Triangulation<dim>           &triangulation,
+    MechanicalProblem(const dealii::parallel::DistributedTriangulationBase<dim>           &triangulation,
                       const Parameters                                                     &parameters,
                       const BoundaryConditions<dim>                                        &boundary_conditions,
                       const std::map<dealii::types::material_id, std::shared_ptr<const MaterialModel>> &materials,
@@ -359,7 +359,7 @@ namespace anvil
     double newmark_acceleration(double u, double u_old, double v_old, double a_old) const;
 
     MPI_Comm                                                 mpi_communicator;
-    const dealii::parallel::distributed::Triangulation<dim> &triangulation;
+    const dealii::parallel::DistributedTriangulationBase<dim> &triangulation;
     const Parameters                                         parameters;
     const BoundaryConditions<dim>                           &boundary_conditions;
     std::map<dealii::types::material_id, std::shared_ptr<const MaterialModel>> materials;

@@ -38,7 +38,7 @@ namespace anvil
   {
     const Scene                                             &scene;
     MPI_Comm                                                 communicator;
-    const dealii::parallel::distributed::Triangulation<dim> &triangulation;
+    const dealii::parallel::DistributedTriangulationBase<dim> &triangulation;
     const Geometry<dim>                                     &geometry;
     const CoupledProblem<dim>                               &physics;
     const std::string                                       &coupling; // Physics/Coupling

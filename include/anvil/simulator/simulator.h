@@ -98,7 +98,8 @@ namespace anvil
     MPI_Comm                                          mpi_communicator;
     dealii::ConditionalOStream                        pcout;
     std::unique_ptr<dealii::TimerOutput>              timer; // made by run(), not at parse
-    dealii::parallel::distributed::Triangulation<dim> triangulation;
+    // Geometry/Partition's kind: p4est's or fully distributed (per body).
+    std::unique_ptr<dealii::parallel::DistributedTriangulationBase<dim>> triangulation;
     Geometry<dim>                                     geometry;
     std::string                                       coupling; // Physics/Coupling
     std::unique_ptr<CouplingScheme<dim>>              scheme;

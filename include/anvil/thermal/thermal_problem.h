@@ -199,7 +199,7 @@ namespace anvil
     /// calls it from several threads at once: it must only read.
     using HeatSource = std::function<double(const CellIterator &cell, unsigned int q)>;
 
-    ThermalProblem(const dealii::parallel::distributed::Triangulation<dim> &triangulation,
+    ThermalProblem(const dealii::parallel::DistributedTriangulationBase<dim> &triangulation,
                    const Parameters                                        &parameters,
                    const ThermalBoundaryConditions<dim>                    &boundary_conditions,
                    const std::map<dealii::types::material_id, ThermalMaterial> &materials,
@@ -430,7 +430,7 @@ namespace anvil
     const thermal::CellTable *current_cells() const;
 
     MPI_Comm                                                 mpi_communicator;
-    const dealii::parallel::distributed::Triangulation<dim> &triangulation;
+    const dealii::parallel::DistributedTriangulationBase<dim> &triangulation;
     const Parameters                                         parameters;
     const ThermalBoundaryConditions<dim>                    &boundary_conditions;
     std::map<dealii::types::material_id, ThermalMaterial>    materials;

@@ -1,0 +1,32 @@
+#pragma once
+
+#include <deal.II/distributed/fully_distributed_tria.h>
+#include <deal.II/grid/tria.h>
+
+#include <vector>
+
+namespace anvil
+{
+  /**
+   * Geometry/Partition = per body (issue 15). p4est numbers the coarse cells of
+   * each connected component consecutively, so with two bodies on two processes
+   * each process gets one body and the contact surface is the partition
+   * boundary. Here every body is cut into @p n_parts slabs of equal cell count
+   * along its own longest axis, so that every process holds a share of every
+   * body and of every contact surface.
+   *
+   * A body is a connected component, through shared vertices, of the active
+   * cells of one material id (blocks that touch may share vertices).
+   * Sets the subdomain id of every active cell of @p serial; returns the
+   * component of every active cell (by active_cell_index()).
+   */
+  template <int dim>
+  std::vector<unsigned int> partition_per_body(dealii::Triangulation<dim> &serial,
+                                               unsigned int                n_parts);
+
+  /// Build @p triangulation from the whole refined mesh @p serial, partitioned
+  /// per body over the triangulation's processes.
+  template <int dim>
+  void create_per_body(dealii::Triangulation<dim>                         &serial,
+                       dealii::parallel::fullydistributed::Triangulation<dim> &triangulation);
+} // namespace anvil
