@@ -48,13 +48,20 @@ namespace anvil
           for (unsigned int i = 0; i < n; ++i)
             {
               const unsigned int q = cols[i];
-              double             e = fp * f.n[q];
-              if (p < 3 && q < 3)
-                e += vol + dev * ((p == q ? 1. : 0.) - 1. / 3);
+              // The sums fill_tangent()/fill_sensitivity() (j2_tangent.h) form: the same bits.
+              double e = fp * f.n[q];
+              if (SENSITIVITY)
+                {
+                  const double a = f.sensitivity_deviatoric;
+                  if (p < 3 && q < 3)
+                    e = (p == q ? 1. - a * (2. / 3) : a * (1. / 3)) + e;
+                  else if (p == q)
+                    e = 0.5 * (1 - a) + e;
+                }
+              else if (p < 3 && q < 3)
+                e = (vol + dev * ((p == q ? 1. : 0.) - 1. / 3)) + e;
               else if (p == q)
-                e += 0.5 * dev;
-              if (SENSITIVITY && p == q)
-                e += p < 3 ? 1. : 0.5;
+                e = 0.5 * dev + e;
               if (f.rank_one)
                 e += f.u[p] * r[q];
               T[6 * p + q] = e;
