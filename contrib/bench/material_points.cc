@@ -1,11 +1,12 @@
 // Material point throughput: updates per second on one core for each model,
 // in the elastic and in the plastic branch, 3D tensors, with the mechanics'
-// request (stress | tangent) and with stress only. Prints figures and the
+// request (stress | tangent, factored where the law gives it:
+// request_factored_tangent), with the dense tangent, and with stress only. Prints figures and the
 // targets beside them; asserts nothing (ctest label "bench", skipped by CI).
 //
 //   build/tests/bench_material_points            # ~1 s per measurement
 //   build/tests/bench_material_points --quick    # ~0.1 s per measurement
-//   build/tests/bench_material_points --updates N [--only NAME] [--branch plastic] [--request s|st]
+//   build/tests/bench_material_points --updates N [--only NAME] [--branch plastic] [--request s|st|dense]
 //        # exactly N updates per figure, for instruction counts (callgrind):
 //        # instructions per update = (Ir of J2Point::update) / (rows x 2 x N)
 //
@@ -89,7 +90,7 @@ namespace
           point.update(list[i & 63], request, response);
           sum += response.stress[0][1] + response.equivalent_plastic_strain;
           if (request & request_tangent)
-            sum += response.tangent[0][1][0][1];
+            sum += response.factored.active ? response.factored.normal : response.tangent[0][1][0][1];
         }
     };
     if (fixed > 0)
@@ -188,8 +189,8 @@ int main(int argc, char **argv)
   const auto plastic_adiabatic = increments(10 * 150 / 84000., true);
 
   std::printf("Material point updates per CPU second, one core, 3D, %.1f s per figure\n", seconds);
-  std::printf("%-26s %-8s %18s %18s  %s\n", "model", "branch", "stress|tangent /s",
-              "stress only /s", "target /s");
+  std::printf("%-26s %-8s %18s %18s %18s  %s\n", "model", "branch", "stress|tangent /s",
+              "dense tangent /s", "stress only /s", "target /s");
   const auto start = std::chrono::steady_clock::now();
   for (const auto &m : models)
     {
@@ -204,25 +205,32 @@ int main(int argc, char **argv)
             continue;
           const auto &list = m.adiabatic ? (plastic_branch ? plastic_adiabatic : elastic_adiabatic) :
                                            (plastic_branch ? plastic_list : elastic_list);
-          unsigned long n1 = 0, n2 = 0;
-          bool          p1 = false, p2 = false;
-          const double  r1 = request_only == "s" ? 0. :
-                               measure(*point, list, request_stress | request_tangent, seconds,
-                                       n1, p1, fixed);
-          const double r2 = request_only == "st" ? 0. :
-                              measure(*point, list, request_stress, seconds, n2, p2, fixed);
-          if (request_only == "s")
-            p1 = p2;
-          if (request_only == "st")
-            p2 = p1;
+          unsigned long n1 = 0, n2 = 0, n3 = 0;
+          bool          p1 = false, p2 = false, p3 = false;
+          const bool    all = request_only.empty();
+          const double  r1 = all || request_only == "st" ?
+                               measure(*point, list,
+                                       request_stress | request_tangent | request_factored_tangent,
+                                       seconds, n1, p1, fixed) :
+                               0.;
+          const double r3 = all || request_only == "dense" ?
+                              measure(*point, list, request_stress | request_tangent, seconds, n3,
+                                      p3, fixed) :
+                              0.;
+          const double r2 = all || request_only == "s" ?
+                              measure(*point, list, request_stress, seconds, n2, p2, fixed) :
+                              0.;
+          const bool p = p1 || p2 || p3; // the branch of the figure measured
+          if (!all)
+            p1 = p2 = p3 = p;
           char target[96] = "";
           if (plastic_branch && m.target_plastic > 0)
             std::snprintf(target, sizeof target, ">= %.0e: s|t %s, s %s", m.target_plastic,
                           r1 >= m.target_plastic ? "met" : "MISSED",
                           r2 >= m.target_plastic ? "met" : "MISSED");
-          std::printf("%-26s %-8s %18.3e %18.3e  %s\n", m.name.c_str(),
-                      p1 ? "plastic" : "elastic", r1, r2, target);
-          if (p1 != plastic_branch || p2 != plastic_branch)
+          std::printf("%-26s %-8s %18.3e %18.3e %18.3e  %s\n", m.name.c_str(),
+                      p1 ? "plastic" : "elastic", r1, r3, r2, target);
+          if (p1 != plastic_branch || p2 != plastic_branch || p3 != plastic_branch)
             std::printf("  warning: the increments did not give the %s branch\n",
                         plastic_branch ? "plastic" : "elastic");
         }

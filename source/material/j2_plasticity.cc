@@ -97,11 +97,25 @@ namespace anvil
           const double                 df_dx = adiabatic_temperature_derivative;
           const double                amplification = 1 / (1 - df_dx);
           const SymmetricTensor<2, 3> &dsigma_dT = response.stress_temperature_derivative;
-          add_outer_product(response.tangent, amplification, dsigma_dT, df_de);
           // ∂f/∂σ̃ₙ ∝ the plastic work's n: zero at an elastic point, whose
           // ∂σ/∂σ̃ₙ stays the identity (flagged: the mechanics skips S : δσ̃).
-          if (t.dp > 0)
-            add_outer_product(response.rotated_stress_sensitivity, amplification, dsigma_dT, df_ds);
+          if (FactoredTangent &f = response.factored; f.active)
+            {
+              // The rank-one terms of the factored form: u = ∂σ/∂T, v, w amplified.
+              f.rank_one = true;
+              const double *u = dsigma_dT.begin_raw(), *v = df_de.begin_raw(),
+                           *w = df_ds.begin_raw();
+              for (unsigned int c = 0; c < 6; ++c)
+                f.u[c] = u[c], f.v[c] = amplification * v[c],
+                f.w[c] = t.dp > 0 ? amplification * w[c] : 0.;
+            }
+          else
+            {
+              add_outer_product(response.tangent, amplification, dsigma_dT, df_de);
+              if (t.dp > 0)
+                add_outer_product(response.rotated_stress_sensitivity, amplification, dsigma_dT,
+                                  df_ds);
+            }
           // f ∝ J (sources per current volume): ∂f/∂ln J = f(x1) = x1 + f1.
           response.volume_ratio_sensitivity = (amplification * (x1 + f1)) * dsigma_dT;
         }

@@ -238,11 +238,7 @@ namespace anvil
               const double x_ji = a.A[j] * b.qs[i] - b.A[j] * a.qs[i];
               drot[i][j] = 0.25 * (x_ij + x_ji);
             }
-        dsigma[d] = response.tangent * deps;
-        if (response.sensitivity_is_identity)
-          dsigma[d] += drot;
-        else
-          dsigma[d] += response.rotated_stress_sensitivity * drot;
+        dsigma[d] = contract_material_tangent(response, deps, drot);
       }
   }
 

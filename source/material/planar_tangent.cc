@@ -12,15 +12,14 @@ namespace anvil
     /// σ += T : d on raw storage, rows 0..N_ROWS, for a d whose nonzero raw
     /// components are @p comps (deal.II's contraction: shear components count twice).
     template <unsigned int N_ROWS, unsigned int n>
-    void add_contraction(const SymmetricTensor<4, 3> &T, const double (&d)[6],
-                         const unsigned int (&comps)[n], SymmetricTensor<2, 3> &sigma)
+    void add_contraction(const double *t, const double (&d)[6], const unsigned int (&comps)[n],
+                         SymmetricTensor<2, 3> &sigma)
     {
       // The shear weight 2 on d once, not per row (× 2 is exact: the same sums).
       double dw[n];
       for (unsigned int i = 0; i < n; ++i)
         dw[i] = d[comps[i]] * (comps[i] < 3 ? 1. : 2.);
-      const double *t = T.begin_raw();
-      double       *s = sigma.begin_raw();
+      double *s = sigma.begin_raw();
       for (unsigned int p = 0; p < N_ROWS; ++p)
         {
           double v = 0;
@@ -31,15 +30,54 @@ namespace anvil
     }
 
     /**
+     * The entries (p < N_ROWS, q in @p cols) of the factored C (or S if
+     * @p SENSITIVITY) on 6x6 raw storage @p T, the others left as they are:
+     * the planar contractions read no more, so a point builds these 16 to
+     * 24 entries instead of the material writing 72.
+     */
+    template <unsigned int N_ROWS, bool SENSITIVITY, unsigned int n>
+    void expand_rows(const FactoredTangent &f, const unsigned int (&cols)[n], double *T)
+    {
+      const double  dev = SENSITIVITY ? -f.sensitivity_deviatoric : f.deviatoric;
+      const double  vol = SENSITIVITY ? 0. : f.bulk;
+      const double  nn  = SENSITIVITY ? f.sensitivity_normal : f.normal;
+      const double *r   = SENSITIVITY ? f.w : f.v;
+      for (unsigned int p = 0; p < N_ROWS; ++p)
+        {
+          const double fp = nn * f.n[p];
+          for (unsigned int i = 0; i < n; ++i)
+            {
+              const unsigned int q = cols[i];
+              // The sums fill_tangent()/fill_sensitivity() (j2_tangent.h) form: the same bits.
+              double e = fp * f.n[q];
+              if (SENSITIVITY)
+                {
+                  const double a = f.sensitivity_deviatoric;
+                  if (p < 3 && q < 3)
+                    e = (p == q ? 1. - a * (2. / 3) : a * (1. / 3)) + e;
+                  else if (p == q)
+                    e = 0.5 * (1 - a) + e;
+                }
+              else if (p < 3 && q < 3)
+                e = (vol + dev * ((p == q ? 1. : 0.) - 1. / 3)) + e;
+              else if (p == q)
+                e = 0.5 * dev + e;
+              if (f.rank_one)
+                e += f.u[p] * r[q];
+              T[6 * p + q] = e;
+            }
+        }
+    }
+
+    /**
      * σ = C : d + S : e (σ zero before, d and e in-plane: raw 0, 1, 3) in one
      * pass over the rows, the sums of two add_contraction() calls: the same bits.
      */
     template <unsigned int N_ROWS>
-    void add_two_contractions(const SymmetricTensor<4, 3> &C, const double (&d)[6],
-                              const SymmetricTensor<4, 3> &S, const double (&e)[6], double *s)
+    void add_two_contractions(const double *c, const double (&d)[6], const double *t,
+                              const double (&e)[6], double *s)
     {
-      const double  dw[3] = {d[0], d[1], d[3] * 2.}, ew[3] = {e[0], e[1], e[3] * 2.};
-      const double *c = C.begin_raw(), *t = S.begin_raw();
+      const double dw[3] = {d[0], d[1], d[3] * 2.}, ew[3] = {e[0], e[1], e[3] * 2.};
       for (unsigned int p = 0; p < N_ROWS; ++p)
         {
           const double vc = c[6 * p] * dw[0] + c[6 * p + 1] * dw[1] + c[6 * p + 3] * dw[2];
@@ -120,6 +158,25 @@ namespace anvil
         }
       static constexpr unsigned int in_plane[3] = {0, 1, 3}, with_shear[5] = {0, 1, 3, 4, 5},
                                     hoop[1]     = {2};
+      // The material's C and S: dense, or the entries the rows below read
+      // from the factored form (C: columns 00, 11, 22, 01; S: 00, 11, 01 and
+      // 02, 12 with out-of-plane σₙ).
+      const double *C = response.tangent.begin_raw(), *S = response.rotated_stress_sensitivity.begin_raw();
+      double        C_rows[6 * N_ROWS], S_rows[6 * N_ROWS];
+      if (const FactoredTangent &f = response.factored; f.active)
+        {
+          static constexpr unsigned int c_cols[4] = {0, 1, 2, 3};
+          expand_rows<N_ROWS, false>(f, c_cols, C_rows);
+          C = C_rows;
+          if (!response.sensitivity_is_identity)
+            {
+              if (out_of_plane)
+                expand_rows<N_ROWS, true>(f, with_shear, S_rows);
+              else
+                expand_rows<N_ROWS, true>(f, in_plane, S_rows);
+              S = S_rows;
+            }
+        }
       for (unsigned int d = 0; d < directions.n; ++d)
         {
           const unsigned int k = directions.kl[d].first, L = directions.kl[d].second;
@@ -130,7 +187,7 @@ namespace anvil
           if (k == 2 && L == 2)
             {
               deps[2] = (1 - 0.5 * kin.dL[2][2]) * kin.F_half_inv[2][2];
-              add_contraction<N_ROWS>(response.tangent, deps, hoop, dsigma[d]);
+              add_contraction<N_ROWS>(C, deps, hoop, dsigma[d]);
               continue;
             }
           const Images &a = a_img[k], &b = b_img[L];
@@ -151,19 +208,17 @@ namespace anvil
               drot[4 + i] = 0.25 * (a.A[i] * b.qs[2] - b.A[i] * a.qs[2]);
           if (response.sensitivity_is_identity)
             {
-              add_contraction<N_ROWS>(response.tangent, deps, in_plane, dsigma[d]);
+              add_contraction<N_ROWS>(C, deps, in_plane, dsigma[d]);
               for (unsigned int c = 0; c < N_ROWS; ++c)
                 s[c] += drot[c];
             }
           else if (out_of_plane)
             {
-              add_contraction<N_ROWS>(response.tangent, deps, in_plane, dsigma[d]);
-              add_contraction<N_ROWS>(response.rotated_stress_sensitivity, drot, with_shear,
-                                      dsigma[d]);
+              add_contraction<N_ROWS>(C, deps, in_plane, dsigma[d]);
+              add_contraction<N_ROWS>(S, drot, with_shear, dsigma[d]);
             }
           else
-            add_two_contractions<N_ROWS>(response.tangent, deps,
-                                         response.rotated_stress_sensitivity, drot, s);
+            add_two_contractions<N_ROWS>(C, deps, S, drot, s);
         }
     }
   } // namespace

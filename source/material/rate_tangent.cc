@@ -31,11 +31,7 @@ namespace anvil
         const Tensor<2, 3> dR = (plus.rotation_increment - minus.rotation_increment) / (2 * h);
         // δσ̃ = δΔR σ_n ΔRᵀ + ΔR σ_n δΔRᵀ (symmetric by construction).
         const SymmetricTensor<2, 3> drot = 2 * symmetrize(dR * sn * transpose(R));
-        dsigma[d] = response.tangent * deps;
-        if (response.sensitivity_is_identity)
-          dsigma[d] += drot;
-        else
-          dsigma[d] += response.rotated_stress_sensitivity * drot;
+        dsigma[d] = contract_material_tangent(response, deps, drot);
       }
   }
 } // namespace anvil

@@ -273,6 +273,10 @@ namespace anvil
 
       MaterialIncrement    increment;
       PointStart           start;
+      // The kernels take the tangent factored where the law gives it (cauchy_tangent).
+      const MaterialRequest request = context.request & request_tangent ?
+                                        context.request | request_factored_tangent :
+                                        context.request;
       for (unsigned int q = 0; q < scratch.points.size(); ++q)
         {
           PointValues       &p     = scratch.points[q];
@@ -314,7 +318,8 @@ namespace anvil
           MaterialResponse &response = p.response;
           try
             {
-              point.update(increment, context.request, response);
+              response.factored.active = false; // (a response of another law's point)
+              point.update(increment, request, response);
             }
           catch (const MaterialPointError &e)
             {

@@ -113,6 +113,31 @@ namespace anvil
     static TangentDirections in_plane(unsigned int dim, bool hoop);
   };
 
+  /// δσ = C : δΔε + S : δσ̃ of @p response, dense or factored (FactoredTangent).
+  inline dealii::SymmetricTensor<2, 3>
+  contract_material_tangent(const MaterialResponse              &response,
+                            const dealii::SymmetricTensor<2, 3> &deps,
+                            const dealii::SymmetricTensor<2, 3> &drot)
+  {
+    if (response.factored.active)
+      {
+        dealii::SymmetricTensor<2, 3> ds;
+        double                       *s = ds.begin_raw();
+        response.factored.add_tangent(deps.begin_raw(), s);
+        if (response.sensitivity_is_identity)
+          ds += drot;
+        else
+          response.factored.add_sensitivity(drot.begin_raw(), s);
+        return ds;
+      }
+    dealii::SymmetricTensor<2, 3> ds = response.tangent * deps;
+    if (response.sensitivity_is_identity)
+      ds += drot;
+    else
+      ds += response.rotated_stress_sensitivity * drot;
+    return ds;
+  }
+
   /**
    * δσ of the incremental update for each unit direction δF = e_k ⊗ e_L of
    * @p directions (F_n fixed), written to @p dsigma[0..n): the Cauchy part of

@@ -24,6 +24,10 @@ namespace anvil
     request_tangent                = 2,
     request_temperature_derivative = 4,
     request_dissipation            = 8,
+    /// With request_tangent: the caller takes the tangent in factored form
+    /// (MaterialResponse::factored) where the law gives one, whose dense
+    /// `tangent` and `rotated_stress_sensitivity` are then not written.
+    request_factored_tangent = 16,
   };
 
   inline MaterialRequest operator|(MaterialRequest a, MaterialRequest b)
@@ -60,6 +64,72 @@ namespace anvil
   };
 
   /**
+   * The consistent tangent of a radial return in factored form (seed §1.3:
+   * the algorithmic modulus of the radial return, Simo & Hughes 1998 box 3.2),
+   * on raw storage (00, 11, 22, 01, 02, 12):
+   *   C = bulk δ⊗δ + deviatoric I_dev + normal n⊗n  [+ u⊗v],
+   *   S = I_sym − sensitivity_deviatoric I_dev + sensitivity_normal n⊗n  [+ u⊗w]
+   * (S unless MaterialResponse::sensitivity_is_identity), the bracketed
+   * rank-one terms if `rank_one` (the adiabatic update: u = ∂σ/∂T, v, w the
+   * amplified ∂ΔT_ad/∂Δε and ∂ΔT_ad/∂σ̃ₙ). C : d then costs a trace, a
+   * deviator and one or two dot products instead of a 6x6 product.
+   */
+  struct FactoredTangent
+  {
+    bool   active   = false; // set by the law (request_factored_tangent), else the dense form
+    bool   rank_one = false;
+    double bulk = 0, deviatoric = 0, normal = 0;
+    double sensitivity_deviatoric = 0, sensitivity_normal = 0;
+    double n[6] = {}, u[6] = {}, v[6] = {}, w[6] = {};
+
+    /// a : d of raw symmetric tensors (the shear components count twice).
+    static double dot(const double *a, const double *d)
+    {
+      return a[0] * d[0] + a[1] * d[1] + a[2] * d[2] + 2 * (a[3] * d[3] + a[4] * d[4] + a[5] * d[5]);
+    }
+    /// s[0..N) += (C : d)[0..N) = α d + β δ + γ n + (v : d) u, α = c_d,
+    /// β = K tr d − c_d tr d/3, γ = c_n n : d.
+    template <unsigned int N = 6>
+    void add_tangent(const double *d, double *s) const
+    {
+      const double tr = d[0] + d[1] + d[2];
+      add<N>(d, deviatoric, bulk * tr - deviatoric * (tr / 3), normal * dot(n, d),
+             rank_one ? dot(v, d) : 0., s);
+    }
+    /// s[0..N) += (S : e)[0..N): α = 1 − a, β = a tr e/3, γ = (a − b) n : e.
+    template <unsigned int N = 6>
+    void add_sensitivity(const double *e, double *s) const
+    {
+      const double a = sensitivity_deviatoric;
+      add<N>(e, 1 - a, a * ((e[0] + e[1] + e[2]) / 3), sensitivity_normal * dot(n, e),
+             rank_one ? dot(w, e) : 0., s);
+    }
+    /// s[0..N) += α d + β δ + γ n + ρ u.
+    template <unsigned int N = 6>
+    void add(const double *d, const double alpha, const double beta, const double gamma,
+             const double rho, double *s) const
+    {
+      for (unsigned int p = 0; p < N; ++p)
+        s[p] += alpha * d[p] + (p < 3 ? beta : 0.) + gamma * n[p] + (rank_one ? rho * u[p] : 0.);
+    }
+    /// The dense C and S (raw storage; S only if @p sensitivity).
+    void expand(dealii::SymmetricTensor<4, 3> &C, dealii::SymmetricTensor<4, 3> *S) const
+    {
+      double *c = C.begin_raw(), *t = S ? S->begin_raw() : nullptr;
+      for (unsigned int p = 0; p < 6; ++p)
+        for (unsigned int q = 0; q < 6; ++q)
+          {
+            const double dev = p == q ? (p < 3 ? 2. / 3 : 0.5) : (p < 3 && q < 3 ? -1. / 3 : 0.);
+            c[6 * p + q] = (p < 3 && q < 3 ? bulk : 0.) + deviatoric * dev + normal * n[p] * n[q] +
+                           (rank_one ? u[p] * v[q] : 0.);
+            if (t)
+              t[6 * p + q] = (p == q ? (p < 3 ? 1. : 0.5) : 0.) - sensitivity_deviatoric * dev +
+                             sensitivity_normal * n[p] * n[q] + (rank_one ? u[p] * w[q] : 0.);
+          }
+    }
+  };
+
+  /**
    * What an update returns. σ = M(σ̃_n, Δε, T) with σ̃_n = ΔR σ_n ΔRᵀ the
    * rotated previous stress; the mechanics linearises the rotation itself and
    * needs ∂σ/∂Δε (`tangent`) and ∂σ/∂σ̃_n (`rotated_stress_sensitivity`,
@@ -71,6 +141,9 @@ namespace anvil
     dealii::SymmetricTensor<4, 3> tangent;
     bool                          sensitivity_is_identity = true;
     dealii::SymmetricTensor<4, 3> rotated_stress_sensitivity;
+    /// `tangent` and `rotated_stress_sensitivity` in factored form, if
+    /// factored.active (request_factored_tangent and a law that gives it).
+    FactoredTangent factored;
     dealii::SymmetricTensor<2, 3> stress_temperature_derivative;
     /// Ẇirr = σ̄ ε̄̇ᵛᵖ (eq. 21), MPa/s = mW/mm³: the plastic work rate.
     double plastic_work_rate = 0.;
