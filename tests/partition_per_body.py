@@ -9,8 +9,8 @@ every body, and the answer does not depend on it.
     upper strip, GMRES + AMG at 1e-10) the same way.
  3. A restart with the per-body partition: two_blocks stopped half way and
     resumed (1 process) ends with the uninterrupted run's answer (1e-9). On 2
-    processes (deal.II 9.4's fully distributed load misplaces the cells' data
-    there), on another process count, or from p4est's checkpoint, the restart
+    processes (the restored state was wrong there, cause not found), on
+    another process count, or from p4est's checkpoint, the restart
     is refused with one line naming Output/Restart from (exit 2).
  4. A bad Geometry/Partition is one error line naming the entry (exit 2)."""
 import os
