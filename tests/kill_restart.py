@@ -58,9 +58,30 @@ def run(cmd, kill_after=None):
         _, err = p.communicate(timeout=kill_after if kill_after else 900)
         return p.returncode, err.decode(errors="replace")
     except subprocess.TimeoutExpired:
-        os.killpg(p.pid, signal.SIGKILL)
+        kill_session(p.pid)
         p.communicate()
         return "killed", ""
+
+
+def kill_session(sid):
+    """SIGKILL every process of session sid, and wait until none is left:
+    mpirun puts each rank in a process group of its own (same session), so
+    killing mpirun's group left the ranks running on, writing checkpoints into
+    the directory the restart was reading (checkpoint.new removed under it)."""
+    deadline = time.time() + 10
+    while time.time() < deadline:
+        alive = []
+        for entry in os.listdir("/proc"):
+            if entry.isdigit():
+                try:
+                    if os.getsid(int(entry)) == sid:
+                        os.kill(int(entry), signal.SIGKILL)
+                        alive.append(entry)
+                except (ProcessLookupError, PermissionError):
+                    pass
+        if not alive:
+            return
+        time.sleep(0.05)
 
 
 def columns(path):
