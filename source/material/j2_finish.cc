@@ -14,6 +14,63 @@ namespace anvil
   {
     using dealii::unit_symmetric_tensor;
 
+    namespace
+    {
+      /// The tangent of the radial return, factored (FactoredTangent) when the
+      /// caller asks for it, else as 36 + 36 entries (C and ∂σ/∂σ̃ₙ).
+      inline void write_tangent(const MaterialRequest request, const bool adiabatic,
+                                const double K, const double G, const double H, const double dp,
+                                const double q_trial, const double *n, MaterialResponse &response)
+      {
+        response.factored.active = false;
+        // Not for the adiabatic update: its rank-one terms (J2Point::update) in
+        // the factored form change the tangent's round-off, which moves the
+        // adiabatic scenes' Newton iterates by up to 1e-5 (necking_bar_thermal).
+        if ((request & request_tangent) && (request & request_factored_tangent) && !adiabatic)
+          {
+            // The same moduli as below, factored (FactoredTangent): the callers'
+            // contractions take it as it is, no 72 entries are written.
+            FactoredTangent &f = response.factored;
+            f.active = true, f.rank_one = false, f.bulk = K;
+            if (dp > 0)
+              {
+                const double a = 3 * G * dp / q_trial, b = 3 * G / (3 * G + H);
+                f.deviatoric = 2 * G * (1 - a), f.normal = 2 * G * (a - b);
+                f.sensitivity_deviatoric = a, f.sensitivity_normal = a - b;
+                for (unsigned int c = 0; c < 6; ++c)
+                  f.n[c] = n[c];
+                response.sensitivity_is_identity = false;
+              }
+            else
+              {
+                f.deviatoric = 2 * G, f.normal = 0;
+                f.sensitivity_deviatoric = f.sensitivity_normal = 0;
+                response.sensitivity_is_identity = true;
+              }
+          }
+        else if (request & request_tangent)
+          {
+            double *C = response.tangent.begin_raw();
+            if (dp > 0)
+              {
+                // Consistent tangent of the radial return (Simo & Hughes 1998, box 3.2,
+                // with H' including the viscous term of eq. 18):
+                //   C = K δ⊗δ + 2G ((1 − a) I_dev + (a − b) n⊗n),
+                //   ∂σ/∂σ̃ₙ = I_sym − b n⊗n − a (I_dev − n⊗n).
+                const double a = 3 * G * dp / q_trial, b = 3 * G / (3 * G + H);
+                fill_tangent<true>(C, K, 2 * G * (1 - a), 2 * G * (a - b), n);
+                response.sensitivity_is_identity = false;
+                fill_sensitivity(response.rotated_stress_sensitivity.begin_raw(), a, b, n);
+              }
+            else
+              {
+                fill_tangent<false>(C, K, 2 * G, 0., n);
+                response.sensitivity_is_identity = true;
+              }
+          }
+      }
+    } // namespace
+
     void J2Point::finish(const MaterialIncrement &inc, const MaterialRequest request, Trial &t,
                          MaterialResponse &response)
     {
@@ -51,52 +108,7 @@ namespace anvil
       eps_c   = eps_n + dp;
       response.equivalent_plastic_strain = eps_c;
 
-      response.factored.active = false;
-      // Not for the adiabatic update: its rank-one terms (J2Point::update) in
-      // the factored form change the tangent's round-off, which moves the
-      // adiabatic scenes' Newton iterates by up to 1e-5 (necking_bar_thermal).
-      if ((request & request_tangent) && (request & request_factored_tangent) && !inc.adiabatic)
-        {
-          // The same moduli as below, factored (FactoredTangent): the callers'
-          // contractions take it as it is, no 72 entries are written.
-          FactoredTangent &f = response.factored;
-          f.active = true, f.rank_one = false, f.bulk = K;
-          if (dp > 0)
-            {
-              const double a = 3 * G * dp / q_trial, b = 3 * G / (3 * G + H);
-              f.deviatoric = 2 * G * (1 - a), f.normal = 2 * G * (a - b);
-              f.sensitivity_deviatoric = a, f.sensitivity_normal = a - b;
-              for (unsigned int c = 0; c < 6; ++c)
-                f.n[c] = n[c];
-              response.sensitivity_is_identity = false;
-            }
-          else
-            {
-              f.deviatoric = 2 * G, f.normal = 0;
-              f.sensitivity_deviatoric = f.sensitivity_normal = 0;
-              response.sensitivity_is_identity = true;
-            }
-        }
-      else if (request & request_tangent)
-        {
-          double *C = response.tangent.begin_raw();
-          if (dp > 0)
-            {
-              // Consistent tangent of the radial return (Simo & Hughes 1998, box 3.2,
-              // with H' including the viscous term of eq. 18):
-              //   C = K δ⊗δ + 2G ((1 − a) I_dev + (a − b) n⊗n),
-              //   ∂σ/∂σ̃ₙ = I_sym − b n⊗n − a (I_dev − n⊗n).
-              const double a = 3 * G * dp / q_trial, b = 3 * G / (3 * G + H);
-              fill_tangent<true>(C, K, 2 * G * (1 - a), 2 * G * (a - b), n);
-              response.sensitivity_is_identity = false;
-              fill_sensitivity(response.rotated_stress_sensitivity.begin_raw(), a, b, n);
-            }
-          else
-            {
-              fill_tangent<false>(C, K, 2 * G, 0., n);
-              response.sensitivity_is_identity = true;
-            }
-        }
+      write_tangent(request, inc.adiabatic, K, G, H, dp, q_trial, n, response);
 
       if (request & request_temperature_derivative)
         {

@@ -108,6 +108,63 @@ namespace anvil
         const double n = std::max(1., std::ceil(span / (stretch * proposal) - 1e-9));
         return span / n;
       }
+
+      /// ARKode's settings beyond deal.II's AdditionalData (called once it
+      /// made its memory): the scheme, silence, limits, the first step.
+      void configure(void *mem, const IntegratorSettings &settings, const double span,
+                     const double t1)
+      {
+        if (settings.order == 1)
+          {
+            // Backward Euler: one stage, A = b = c = 1 (fixed steps: no embedding).
+            ARKodeButcherTable table = ARKodeButcherTable_Alloc(1, SUNFALSE);
+            table->q       = 1;
+            table->p       = 0;
+            table->A[0][0] = 1;
+            table->b[0]    = 1;
+            table->c[0]    = 1;
+            ARKStepSetTables(mem, 1, 0, table, nullptr);
+            ARKodeButcherTable_Free(table);
+          }
+        // ARKode's own messages (step size below round-off, mxstep reached)
+        // would precede anvil's one line on a failed heat step, which names
+        // the cause (a NaN boundary value, the step it cut back): silenced.
+        ARKStepSetErrFile(mem, nullptr);
+        ARKStepSetPostprocessStepFn(mem, record_step);
+        ARKStepSetMaxNumSteps(mem, settings.max_internal_steps);
+        ARKStepSetInterpolantType(mem, ARK_INTERP_LAGRANGE);
+        ARKStepSetStopTime(mem, t1);
+        // ARKode keeps the step while its controller would grow it by less
+        // than 1.5 (fixed-step bounds 1, 1.5): the proposal then says h, not
+        // the larger step the error allows, and the next call, started from
+        // it, would keep cutting its span in as many steps. Bounds 1, 1 let
+        // the proposal grow (source/thermal/arkode_integrator.h, next_step).
+        ARKStepSetFixedStepBounds(mem, 1., 1.);
+        if (settings.fixed_step_size > 0)
+          {
+            // Whole number of steps: h = span / ceil(span / h_fixed).
+            const double n = std::max(1., std::ceil(span / settings.fixed_step_size - 1e-9));
+            ARKStepSetFixedStep(mem, span / n);
+          }
+        else
+          ARKStepSetInitStep(mem, first_step(span, settings.initial_step_size));
+      }
+
+      /// The run's counters and last/next step sizes into @p stats.
+      void read_counters(void *mem, IntegratorStatistics &stats)
+      {
+        long  n   = 0, nfe = 0, nfi = 0;
+        ARKStepGetNumSteps(mem, &n), stats.steps = n;
+        ARKStepGetNumStepAttempts(mem, &n), stats.attempts = n;
+        ARKStepGetNumErrTestFails(mem, &n), stats.error_test_failures = n;
+        ARKStepGetNumNonlinSolvIters(mem, &n), stats.nonlinear_iterations = n;
+        ARKStepGetNumNonlinSolvConvFails(mem, &n), stats.nonlinear_failures = n;
+        ARKStepGetNumRhsEvals(mem, &nfe, &nfi), stats.rhs_evaluations = nfi;
+        ARKStepGetLastStep(mem, &stats.last_step);
+        realtype proposal = 0;
+        ARKStepGetCurrentStep(mem, &proposal);
+        stats.next_step = std::max(double(proposal), stats.largest_step);
+      }
     } // namespace
 
     IntegratorStatistics integrate(ImplicitSystem &system, Vector &y, const double t0,
@@ -211,42 +268,7 @@ namespace anvil
       };
       StepRecord record;
       record.time = t0;
-      ode.custom_setup = [&](void *mem) {
-        if (settings.order == 1)
-          {
-            // Backward Euler: one stage, A = b = c = 1 (fixed steps: no embedding).
-            ARKodeButcherTable table = ARKodeButcherTable_Alloc(1, SUNFALSE);
-            table->q       = 1;
-            table->p       = 0;
-            table->A[0][0] = 1;
-            table->b[0]    = 1;
-            table->c[0]    = 1;
-            ARKStepSetTables(mem, 1, 0, table, nullptr);
-            ARKodeButcherTable_Free(table);
-          }
-        // ARKode's own messages (step size below round-off, mxstep reached)
-        // would precede anvil's one line on a failed heat step, which names
-        // the cause (a NaN boundary value, the step it cut back): silenced.
-        ARKStepSetErrFile(mem, nullptr);
-        ARKStepSetPostprocessStepFn(mem, record_step);
-        ARKStepSetMaxNumSteps(mem, settings.max_internal_steps);
-        ARKStepSetInterpolantType(mem, ARK_INTERP_LAGRANGE);
-        ARKStepSetStopTime(mem, t1);
-        // ARKode keeps the step while its controller would grow it by less
-        // than 1.5 (fixed-step bounds 1, 1.5): the proposal then says h, not
-        // the larger step the error allows, and the next call, started from
-        // it, would keep cutting its span in as many steps. Bounds 1, 1 let
-        // the proposal grow (source/thermal/arkode_integrator.h, next_step).
-        ARKStepSetFixedStepBounds(mem, 1., 1.);
-        if (settings.fixed_step_size > 0)
-          {
-            // Whole number of steps: h = span / ceil(span / h_fixed).
-            const double n = std::max(1., std::ceil(span / settings.fixed_step_size - 1e-9));
-            ARKStepSetFixedStep(mem, span / n);
-          }
-        else
-          ARKStepSetInitStep(mem, first_step(span, settings.initial_step_size));
-      };
+      ode.custom_setup = [&](void *mem) { configure(mem, settings, span, t1); };
       ode.output_step = [&](const double t, const Vector &, const unsigned int step) {
         if (step > 0 && std::abs(t - t1) > 1e-12 * std::max(std::abs(t1), span))
           throw EvolveFailed("ARKode stopped at t = " + std::to_string(t));
@@ -268,18 +290,7 @@ namespace anvil
       current_record = nullptr;
       stats.largest_step = record.largest_step;
 
-      void *mem = ode.get_arkode_memory();
-      long  n   = 0, nfe = 0, nfi = 0;
-      ARKStepGetNumSteps(mem, &n), stats.steps = n;
-      ARKStepGetNumStepAttempts(mem, &n), stats.attempts = n;
-      ARKStepGetNumErrTestFails(mem, &n), stats.error_test_failures = n;
-      ARKStepGetNumNonlinSolvIters(mem, &n), stats.nonlinear_iterations = n;
-      ARKStepGetNumNonlinSolvConvFails(mem, &n), stats.nonlinear_failures = n;
-      ARKStepGetNumRhsEvals(mem, &nfe, &nfi), stats.rhs_evaluations = nfi;
-      ARKStepGetLastStep(mem, &stats.last_step);
-      realtype proposal = 0;
-      ARKStepGetCurrentStep(mem, &proposal);
-      stats.next_step = std::max(double(proposal), stats.largest_step);
+      read_counters(ode.get_arkode_memory(), stats);
       return stats;
     }
   } // namespace thermal
