@@ -34,14 +34,22 @@ namespace anvil
      * instructions per copy of the tube's 2 900 dofs). Otherwise, or where
      * any process's layouts differ, operator= (collective, so decided by all).
      */
+    /// Whether this process holds the same elements of @p a and @p b in the same order.
+    bool same_local_layout(const TrilinosWrappers::MPI::Vector &a,
+                           const TrilinosWrappers::MPI::Vector &b)
+    {
+      const Epetra_BlockMap &p = a.trilinos_vector().Map(), &q = b.trilinos_vector().Map();
+      return p.DataPtr() == q.DataPtr() ||
+             (p.NumMyElements() == q.NumMyElements() &&
+              std::equal(p.MyGlobalElements(), p.MyGlobalElements() + p.NumMyElements(),
+                         q.MyGlobalElements()));
+    }
+
     void copy_values(TrilinosWrappers::MPI::Vector &dst, const TrilinosWrappers::MPI::Vector &src,
                      const MPI_Comm communicator)
     {
-      const Epetra_BlockMap &a = dst.trilinos_vector().Map(), &b = src.trilinos_vector().Map();
-      bool same = a.DataPtr() == b.DataPtr() ||
-                  (a.NumMyElements() == b.NumMyElements() &&
-                   std::equal(a.MyGlobalElements(), a.MyGlobalElements() + a.NumMyElements(),
-                              b.MyGlobalElements()));
+      const Epetra_BlockMap &b = src.trilinos_vector().Map();
+      bool same = same_local_layout(dst, src);
       if (Utilities::MPI::n_mpi_processes(communicator) > 1)
         same = Utilities::MPI::min(same ? 1 : 0, communicator) == 1;
       if (!same)
@@ -338,10 +346,7 @@ namespace anvil
     double energy = 0;
     // By the local arrays where v has mv's layout (one process): the same
     // values in the same order as v(i) and mv(i), without a look-up each.
-    const Epetra_BlockMap &v_map = v.trilinos_vector().Map(), &mv_map = mv.trilinos_vector().Map();
-    if (v_map.NumMyElements() == mv_map.NumMyElements() &&
-        std::equal(v_map.MyGlobalElements(), v_map.MyGlobalElements() + v_map.NumMyElements(),
-                   mv_map.MyGlobalElements()))
+    if (same_local_layout(v, mv))
       {
         const double *const v_values = v.trilinos_vector()[0], *const mv_values = mv.begin();
         for (unsigned int k = 0; k < mv.locally_owned_size(); ++k)
