@@ -10,15 +10,83 @@
 #include <anvil/material/j2_plasticity.h>
 #include <anvil/mechanics/assembly_kernels.h>
 #include <anvil/mechanics/assembly_mapping.h>
+#include <anvil/mechanics/cell_scatter.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 
 namespace anvil
 {
   using namespace dealii;
+
+  namespace
+  {
+    using namespace MechanicsAssembly;
+
+    // The ghosted vectors' values of a cell's dofs, read by local index in
+    // their one map (checked): one look-up per dof and mesh, not one per
+    // value and assembly.
+    template <int dim>
+    struct GhostedValues
+    {
+      GhostedValues(const AssemblyMapping<dim> &mapping, const unsigned int n_dofs,
+                    const TrilinosWrappers::MPI::Vector &u,
+                    const TrilinosWrappers::MPI::Vector &u_old,
+                    const TrilinosWrappers::MPI::Vector *v_old,
+                    const TrilinosWrappers::MPI::Vector *a_old)
+        : mapping(mapping)
+        , n_dofs(n_dofs)
+        , map(u.trilinos_vector().Map())
+        , u(u.trilinos_vector()[0])
+        , u_old(u_old.trilinos_vector()[0])
+        , v_old(v_old ? v_old->trilinos_vector()[0] : nullptr)
+        , a_old(a_old ? a_old->trilinos_vector()[0] : nullptr)
+      {
+        const auto same = [&](const TrilinosWrappers::MPI::Vector *v) {
+          return v && same_local_map(v->trilinos_vector().Map(), map);
+        };
+        AssertThrow(same(&u_old) && (v_old == nullptr) == (a_old == nullptr) &&
+                      (!v_old || (same(v_old) && same(a_old))),
+                    ExcInternalError());
+        mapping.reserve_vector_indices(n_dofs);
+      }
+
+      // On any thread: each fills and reads only its own cell's indices.
+      // @p dofs gives the cell's dof indices, asked for only the first time.
+      template <typename DofIndices>
+      void gather(const unsigned int cell_index, const DofIndices &dofs,
+                  ScratchData<dim> &scratch) const
+      {
+        int *const lids = mapping.vector_indices(cell_index, n_dofs);
+        if (lids[0] == -2)
+          {
+            const std::vector<types::global_dof_index> &dof_indices = dofs();
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              {
+                lids[i] = map.LID(static_cast<TrilinosWrappers::types::int_type>(dof_indices[i]));
+                AssertThrow(lids[i] >= 0, ExcInternalError()); // a cell's dofs are relevant
+              }
+          }
+        for (unsigned int i = 0; i < n_dofs; ++i)
+          {
+            scratch.local_u[i]     = u[lids[i]];
+            scratch.local_u_old[i] = u_old[lids[i]];
+          }
+        if (v_old)
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            {
+              scratch.local_v_old[i] = v_old[lids[i]];
+              scratch.local_a_old[i] = a_old[lids[i]];
+            }
+      }
+
+      const AssemblyMapping<dim> &mapping;
+      const unsigned int          n_dofs;
+      const Epetra_BlockMap      &map;
+      const double *const         u, *const u_old, *const v_old, *const a_old;
+    };
+  } // namespace
 
   template <int dim>
   MechanicsAssembly::Context<dim> MechanicalProblem<dim>::assembly_context(const bool   with_matrix,
@@ -85,26 +153,10 @@ namespace anvil
       fe, quadrature, formulation->component, axisymmetric);
     const bool centre = formulation->f_bar;
 
-    // The ghosted vectors share one map (checked): their local values.
-    const unsigned int    n_dofs_per_cell = fe.n_dofs_per_cell();
-    const Epetra_BlockMap &vector_map     = solution.trilinos_vector().Map();
-    // (Epetra's SameAs() is collective; this is the local part of it.)
-    const auto same_map = [&](const TrilinosWrappers::MPI::Vector &v) {
-      const Epetra_BlockMap &m = v.trilinos_vector().Map();
-      return m.DataPtr() == vector_map.DataPtr() ||
-             (m.NumMyElements() == vector_map.NumMyElements() &&
-              std::equal(m.MyGlobalElements(), m.MyGlobalElements() + m.NumMyElements(),
-                         vector_map.MyGlobalElements()));
-    };
-    AssertThrow(same_map(old_solution) &&
-                  (!dynamic || (same_map(velocity_old_ghosted) && same_map(acceleration_old_ghosted))),
-                ExcInternalError());
-    const double *const u_values     = solution.trilinos_vector()[0];
-    const double *const u_old_values = old_solution.trilinos_vector()[0];
-    const double *const v_old_values = dynamic ? velocity_old_ghosted.trilinos_vector()[0] : nullptr;
-    const double *const a_old_values =
-      dynamic ? acceleration_old_ghosted.trilinos_vector()[0] : nullptr;
-    assembly_mapping->reserve_vector_indices(n_dofs_per_cell);
+    const unsigned int       n_dofs_per_cell = fe.n_dofs_per_cell();
+    const GhostedValues<dim> ghosted(*assembly_mapping, n_dofs_per_cell, solution, old_solution,
+                                     dynamic ? &velocity_old_ghosted : nullptr,
+                                     dynamic ? &acceleration_old_ghosted : nullptr);
 
     // One cell on any thread: its dof values, then the terms in a fixed
     // order (each term's sums run in the order of the serial loop).
@@ -115,30 +167,12 @@ namespace anvil
       scratch.reinit(cell, reference, formulation->component, centre, axisymmetric);
       cell->get_dof_indices(copy.dof_indices);
       copy.cell_index = cell->active_cell_index();
-      // The dof values by local index in the ghosted vectors' map (one
-      // look-up per dof and mesh, not one per value and assembly).
-      int *const lids = assembly_mapping->vector_indices(copy.cell_index, n_dofs_per_cell);
-      if (lids[0] == -2)
-        for (unsigned int i = 0; i < n_dofs_per_cell; ++i)
-          {
-            lids[i] = vector_map.LID(static_cast<TrilinosWrappers::types::int_type>(copy.dof_indices[i]));
-            AssertThrow(lids[i] >= 0, ExcInternalError()); // a cell's dofs are relevant
-          }
-      for (unsigned int i = 0; i < n_dofs_per_cell; ++i)
-        {
-          scratch.local_u[i]     = u_values[lids[i]];
-          scratch.local_u_old[i] = u_old_values[lids[i]];
-        }
+      ghosted.gather(
+        copy.cell_index, [&]() -> const auto & { return copy.dof_indices; }, scratch);
       if (with_matrix)
         copy.matrix = 0;
       copy.internal = 0;
       copy.external = 0;
-      if (dynamic)
-        for (unsigned int i = 0; i < n_dofs_per_cell; ++i)
-          {
-            scratch.local_v_old[i] = v_old_values[lids[i]];
-            scratch.local_a_old[i] = a_old_values[lids[i]];
-          }
       scratch.rho =
         (dynamic || context.body_force) ? materials.at(cell->material_id())->density() : 0;
       if (context.has_temperature_field())
@@ -166,164 +200,10 @@ namespace anvil
     unsigned int n_cells = 0;
     max_plastic_increment = 0;
     material_failure.clear();
-    // A cell with no constrained dof and only owned rows and columns adds
-    // its matrix straight into Epetra's CRS value array, at the positions of
-    // its entries found once per cell and matrix pattern
-    // (AssemblyMapping::matrix_positions), and its vectors by owned local
-    // index (owned_vector_indices): no search of a row, no global-to-local
-    // look-up. Each entry gets the one addition SumIntoMyValues and
-    // Vector::add would make, in the same cell order: the same bits.
-    // Otherwise local row and column numbers (local_indices) or, with
-    // constraints, AffineConstraints.
-    // deal.II 9.4 gives only const access to the Epetra matrix; ours is not const.
-    const unsigned int n_dofs = fe.n_dofs_per_cell();
-    auto &matrix = const_cast<Epetra_CrsMatrix &>(system_matrix.trilinos_matrix());
-    int    *row_start = nullptr, *row_columns = nullptr;
-    double *matrix_values = nullptr;
-    if (with_matrix && matrix.ExtractCrsDataPointers(row_start, row_columns, matrix_values) != 0)
-      matrix_values = nullptr; // storage not optimised: add by local indices
-    const Epetra_BlockMap &owned_map = system_rhs.trilinos_vector().Map();
-    const auto owned_values = [&](TrilinosWrappers::MPI::Vector &v) -> double * {
-      const Epetra_BlockMap &m = v.trilinos_vector().Map();
-      const bool same = m.DataPtr() == owned_map.DataPtr() ||
-                        (m.NumMyElements() == owned_map.NumMyElements() &&
-                         std::equal(m.MyGlobalElements(), m.MyGlobalElements() + m.NumMyElements(),
-                                    owned_map.MyGlobalElements()));
-      return same ? v.trilinos_vector()[0] : nullptr;
-    };
-    double *const rhs_values      = owned_values(system_rhs);
-    double *const internal_values = owned_values(internal_force);
-    double *const external_values = owned_values(external_force);
-    double *const inertia_values  = owned_values(inertia_force);
-    // The cell's dofs in the owned vectors (null if one is owned elsewhere).
-    const auto owned_indices = [&](const CopyData &copy) -> const int * {
-      int *const own = assembly_mapping->owned_vector_indices(copy.cell_index, n_dofs);
-      if (own[0] == -2)
-        for (unsigned int i = 0; i < n_dofs; ++i)
-          own[i] = owned_map.LID(static_cast<TrilinosWrappers::types::int_type>(copy.dof_indices[i]));
-      for (unsigned int i = 0; i < n_dofs; ++i)
-        if (own[i] < 0)
-          return nullptr;
-      return own;
-    };
-    const auto add_owned = [&](double *values, const int *own, const Vector<double> &local) {
-      for (unsigned int i = 0; i < n_dofs; ++i)
-        values[own[i]] += local(i);
-    };
-    // The positions of the cell's matrix entries (null: add otherwise).
-    const auto matrix_positions = [&](const CopyData &copy) -> const int * {
-      if (!matrix_values)
-        return nullptr;
-      int *const pos = assembly_mapping->matrix_positions(copy.cell_index, n_dofs);
-      if (!pos)
-        return nullptr;
-      if (pos[0] == -2)
-        {
-          const auto find_all = [&] {
-            // The cell's local column numbers once, in increasing order, then
-            // each row walked once beside them (FillComplete sorts a row's
-            // columns; an entry the walk passed is searched for). Found anew
-            // for every cell at each of the tube's ~180 new patterns: a
-            // search per entry cost 5400 instructions per cell, this ~1500.
-            std::array<std::pair<int, unsigned int>, 64> column;
-            AssertIndexRange(n_dofs, column.size() + 1);
-            for (unsigned int j = 0; j < n_dofs; ++j)
-              if ((column[j] = {matrix.LCID(static_cast<TrilinosWrappers::types::int_type>(
-                                  copy.dof_indices[j])),
-                                j})
-                    .first < 0)
-                return false;
-            std::sort(column.begin(), column.begin() + n_dofs);
-            for (unsigned int i = 0; i < n_dofs; ++i)
-              {
-                const int row =
-                  matrix.LRID(static_cast<TrilinosWrappers::types::int_type>(copy.dof_indices[i]));
-                if (row < 0)
-                  return false;
-                const int *const begin = row_columns + row_start[row];
-                const int *const end   = row_columns + row_start[row + 1];
-                const int       *at    = begin;
-                for (unsigned int j = 0; j < n_dofs; ++j)
-                  {
-                    while (at != end && *at < column[j].first)
-                      ++at;
-                    if (at == end || *at != column[j].first)
-                      at = std::find(begin, end, column[j].first);
-                    if (at == end)
-                      return false;
-                    pos[i * n_dofs + column[j].second] = at - row_columns;
-                  }
-              }
-            return true;
-          };
-          if (!find_all())
-            pos[0] = -1;
-        }
-      return pos[0] >= 0 ? pos : nullptr;
-    };
-    auto add_by_local_indices = [&](const CopyData &copy) {
-      int *const local_rows = assembly_mapping->local_indices(copy.cell_index, n_dofs);
-      int *const local_cols = local_rows + n_dofs;
-      if (local_rows[0] == -2)
-        for (unsigned int i = 0; i < n_dofs; ++i)
-          {
-            const auto g = static_cast<TrilinosWrappers::types::int_type>(copy.dof_indices[i]);
-            local_rows[i] = matrix.LRID(g);
-            local_cols[i] = matrix.LCID(g);
-          }
-      for (unsigned int i = 0; i < n_dofs; ++i)
-        if (local_rows[i] < 0 || local_cols[i] < 0)
-          return false;
-      for (unsigned int i = 0; i < n_dofs; ++i)
-        {
-          const int ierr =
-            matrix.SumIntoMyValues(local_rows[i], n_dofs, &copy.matrix(i, 0), local_cols);
-          AssertThrow(ierr == 0, ExcTrilinosError(ierr));
-        }
-      system_rhs.add(copy.dof_indices, copy.rhs);
-      return true;
-    };
-    // The cell's K and −R where no constraint is involved; false: not added.
-    // Whether a cell has a constrained dof, once per set of constrained dofs
-    // (the predictor's and the iterations' alternate: both kept).
-    signed char *const constrained_cells =
-      assembly_mapping->constrained_cells(active_constraints->get_lines());
-    auto add_unconstrained = [&](const CopyData &copy, const int *own) {
-      signed char &constrained = constrained_cells[copy.cell_index];
-      if (constrained < 0)
-        {
-          constrained = 0;
-          for (unsigned int i = 0; i < n_dofs; ++i)
-            if (active_constraints->is_constrained(copy.dof_indices[i]))
-              constrained = 1;
-        }
-      if (constrained)
-        return false;
-      if (!with_matrix)
-        {
-          if (!own || !rhs_values)
-            return false;
-          add_owned(rhs_values, own, copy.rhs);
-          return true;
-        }
-      if (const int *pos = own && rhs_values ? matrix_positions(copy) : nullptr)
-        {
-          const double *K = &copy.matrix(0, 0);
-          for (unsigned int k = 0; k < n_dofs * n_dofs; ++k)
-            matrix_values[pos[k]] += K[k];
-          add_owned(rhs_values, own, copy.rhs);
-          return true;
-        }
-      return add_by_local_indices(copy);
-    };
-    // A force vector: by owned local index, or deal.II's add.
-    const auto add_force = [&](TrilinosWrappers::MPI::Vector &v, double *values, const int *own,
-                               const CopyData &copy, const Vector<double> &local) {
-      if (own && values)
-        add_owned(values, own, local);
-      else
-        v.add(copy.dof_indices, local);
-    };
+    CellScatter<dim> scatter(*assembly_mapping, *active_constraints,
+                             {with_matrix ? &system_matrix : nullptr, system_rhs, internal_force,
+                              external_force, inertia_force},
+                             n_dofs_per_cell, dynamic);
     auto copier = [&](const CopyData &copy) {
       if (failed)
         return;
@@ -335,19 +215,7 @@ namespace anvil
           return;
         }
       max_plastic_increment = std::max(max_plastic_increment, copy.max_plastic_increment);
-      const int *const own = owned_indices(copy);
-      if (dynamic)
-        add_force(inertia_force, inertia_values, own, copy, copy.inertia);
-      if (!add_unconstrained(copy, own))
-        {
-          if (with_matrix)
-            active_constraints->distribute_local_to_global(copy.matrix, copy.rhs, copy.dof_indices,
-                                                           system_matrix, system_rhs);
-          else
-            active_constraints->distribute_local_to_global(copy.rhs, copy.dof_indices, system_rhs);
-        }
-      add_force(internal_force, internal_values, own, copy, copy.internal);
-      add_force(external_force, external_values, own, copy, copy.external);
+      scatter.add(copy);
     };
 
     const UpdateFlags flags =
@@ -412,17 +280,8 @@ namespace anvil
     const unsigned int n_dofs_per_cell = fe.n_dofs_per_cell();
     CopyData           copy(n_dofs_per_cell, quadrature.size());
     // The dof values by local index, as the assembly reads them (its look-ups, kept per mesh).
-    const Epetra_BlockMap &vector_map   = solution.trilinos_vector().Map();
-    const double *const    u_values     = solution.trilinos_vector()[0];
-    const double *const    u_old_values = old_solution.trilinos_vector()[0];
-    const Epetra_BlockMap &old_map      = old_solution.trilinos_vector().Map();
-    AssertThrow(old_map.DataPtr() == vector_map.DataPtr() ||
-                  (old_map.NumMyElements() == vector_map.NumMyElements() &&
-                   std::equal(old_map.MyGlobalElements(),
-                              old_map.MyGlobalElements() + old_map.NumMyElements(),
-                              vector_map.MyGlobalElements())),
-                ExcInternalError());
-    assembly_mapping->reserve_vector_indices(n_dofs_per_cell);
+    const GhostedValues<dim> ghosted(*assembly_mapping, n_dofs_per_cell, solution, old_solution,
+                                     nullptr, nullptr);
     static_assert(n_audit_terms == 7 && audit_elastic_energy == 6,
                   "step_audit holds every AuditTerm but the state's elastic energy");
     step_audit.fill(0.);
@@ -435,22 +294,11 @@ namespace anvil
       if (cell->is_locally_owned())
         {
           scratch.reinit(cell, reference, formulation->component, formulation->f_bar, axisymmetric);
-          int *const lids = assembly_mapping->vector_indices(cell->active_cell_index(), n_dofs_per_cell);
-          if (lids[0] == -2)
-            {
-              cell->get_dof_indices(copy.dof_indices);
-              for (unsigned int i = 0; i < n_dofs_per_cell; ++i)
-                {
-                  lids[i] = vector_map.LID(
-                    static_cast<TrilinosWrappers::types::int_type>(copy.dof_indices[i]));
-                  AssertThrow(lids[i] >= 0, ExcInternalError());
-                }
-            }
-          for (unsigned int i = 0; i < n_dofs_per_cell; ++i)
-            {
-              scratch.local_u[i]     = u_values[lids[i]];
-              scratch.local_u_old[i] = u_old_values[lids[i]];
-            }
+          const auto dof_indices = [&]() -> const auto & {
+            cell->get_dof_indices(copy.dof_indices);
+            return copy.dof_indices;
+          };
+          ghosted.gather(cell->active_cell_index(), dof_indices, scratch);
           material_update.audit(cell, scratch, copy);
           for (const auto &terms : copy.audit)
             {
