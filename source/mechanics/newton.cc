@@ -179,6 +179,10 @@ namespace anvil
   MechanicalProblem<dim>::solve_step(const double time_old, const double time_new,
                                      const bool from_last_solution)
   {
+    // The whole step's Newton solve (contact step, pattern, predictor,
+    // iterations): the cost per iteration perf.py sets against one assembly
+    // and one linear solve.
+    TimerOutput::Scope timed(timer, "Mechanics: Newton solve");
     StepResult result;
     current_time_step = time_new - time_old;
     current_time      = time_new;
@@ -238,9 +242,11 @@ namespace anvil
         // round-off of M ã is relative to it).
         const double scale = std::max({internal_force.l2_norm(), external_force.l2_norm(),
                                        inertia_force.l2_norm(), result.residuals.front()});
-        TrilinosWrappers::MPI::Vector step_u(owned_solution);
-        step_u -= owned_old_solution;
-        const double du_scale = step_u.l2_norm();
+        // The step's displacement so far, in du (free until the next solve):
+        // a copy into a vector of the same layout object, not a new vector.
+        du = owned_solution;
+        du -= owned_old_solution;
+        const double du_scale = du.l2_norm();
         const double r_previous = result.residuals.size() > 1 ?
                                     result.residuals[result.residuals.size() - 2] : r;
         // Corrections cannot fall below round-off of the displacement itself.
