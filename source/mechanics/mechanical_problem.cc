@@ -337,19 +337,37 @@ namespace anvil
     // Axisymmetric: nodes on the axis (x = 0) do not move radially.
     if (!axisymmetric)
       return;
+    // Called for every step's predictor constraints: the radial dof at each
+    // vertex found once per call, a cell's dofs and size only near the axis.
+    std::vector<unsigned int> radial_dof(GeometryInfo<dim>::vertices_per_cell, fe.n_dofs_per_cell());
+    if (fe.has_support_points())
+      for (const unsigned int v : GeometryInfo<dim>::vertex_indices())
+        for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+          if (fe.system_to_component_index(i).first == 0 &&
+              fe.get_unit_support_points()[i].distance(GeometryInfo<dim>::unit_cell_vertex(v)) < 1e-12)
+            {
+              radial_dof[v] = i;
+              break;
+            }
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
         {
-          cell->get_dof_indices(dofs);
+          double diameter = -1;
+          bool   have_dofs = false;
           for (const unsigned int v : cell->vertex_indices())
-            if (std::abs(cell->vertex(v)[0]) < 1e-12 * cell->diameter())
-              for (unsigned int i = 0; i < dofs.size(); ++i)
-                if (fe.system_to_component_index(i).first == 0 && fe.has_support_points() &&
-                    fe.get_unit_support_points()[i].distance(
-                      GeometryInfo<dim>::unit_cell_vertex(v)) < 1e-12 &&
-                    !c.is_constrained(dofs[i]) && locally_relevant_dofs.is_element(dofs[i]))
-                  c.add_line(dofs[i]);
+            {
+              const double x = std::abs(cell->vertex(v)[0]);
+              if (x != 0 && diameter < 0)
+                diameter = cell->diameter();
+              if (radial_dof[v] == fe.n_dofs_per_cell() || !(x == 0 || x < 1e-12 * diameter))
+                continue;
+              if (!have_dofs)
+                cell->get_dof_indices(dofs), have_dofs = true;
+              const auto dof = dofs[radial_dof[v]];
+              if (!c.is_constrained(dof) && locally_relevant_dofs.is_element(dof))
+                c.add_line(dof);
+            }
         }
   }
 
