@@ -20,9 +20,11 @@
 #include <anvil/mechanics/element_formulation.h>
 #include <anvil/material/kinematics.h>
 #include <anvil/mechanics/mechanical_problem.h>
+#include <anvil/mechanics/serial_matrix.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <sstream>
@@ -134,7 +136,6 @@ namespace anvil
     setup_matrix();
 
     previous_time_step = 0;
-    previous_increment.reinit(locally_owned_dofs, mpi_communicator);
     {
       // The diagonal of the mesh's bounding box: a length scale for the
       // round-off floor of the Newton test (GridTools::diameter compares all
@@ -159,14 +160,28 @@ namespace anvil
         }
       mesh_diameter = std::sqrt(diagonal);
     }
-    for (auto *v : {&system_rhs, &internal_force, &internal_force_old, &external_force,
-                    &external_force_old, &reaction_force, &reaction_force_old, &owned_solution,
-                    &owned_old_solution, &velocity_old, &acceleration_old, &static_residual_old,
-                    &inertia_force, &contact_force, &contact_force_old})
-      v->reinit(locally_owned_dofs, mpi_communicator);
-    for (auto *v : {&solution, &old_solution, &velocity_ghosted, &velocity_old_ghosted,
-                    &acceleration_old_ghosted})
-      v->reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+    // One Epetra map per layout, shared by all vectors of that layout
+    // (reinit from a vector copies its map, and with it the map's
+    // communicator object): deal.II 9.4's operator= copies the local values
+    // only between vectors whose maps share the communicator object, and
+    // otherwise builds an Epetra_Import for every copy (~65 000 instructions
+    // per copy of the tube's 2 900 dofs). Where no process has ghosts (one
+    // process), the ghosted vectors take the owned layout itself, so that
+    // Newton's u → ghosted u copies are plain copies too.
+    system_rhs.reinit(locally_owned_dofs, mpi_communicator);
+    for (auto *v : {&internal_force, &internal_force_old, &external_force, &external_force_old,
+                    &reaction_force, &reaction_force_old, &owned_solution, &owned_old_solution,
+                    &velocity_old, &acceleration_old, &static_residual_old, &inertia_force,
+                    &contact_force, &contact_force_old, &previous_increment})
+      v->reinit(system_rhs);
+    const bool ghosts =
+      Utilities::MPI::max(locally_relevant_dofs == locally_owned_dofs ? 0 : 1, mpi_communicator) == 1;
+    if (ghosts)
+      solution.reinit(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
+    else
+      solution.reinit(system_rhs);
+    for (auto *v : {&old_solution, &velocity_ghosted, &velocity_old_ghosted, &acceleration_old_ghosted})
+      v->reinit(solution);
 
     gravity = Tensor<1, dim>();
     if (!parameters.gravity.empty())
@@ -202,53 +217,80 @@ namespace anvil
     // the master face below it), possibly owned by other processes: their
     // rows enter the pattern here and go to their owners.
     std::vector<std::vector<types::global_dof_index>> groups;
-    IndexSet rows = locally_relevant_dofs;
     if (contact)
+      groups = contact->couplings();
+    // The cells' couplings change only with the mesh and the constraints;
+    // each new contact pattern (the tube's ~180 on its crush) copies them
+    // instead of looping over the cells again (~6.6 M instructions there,
+    // most of it condensing each cell's dofs through AffineConstraints).
+    const auto fill_cell_pattern = [&]() {
+      if (!cell_pattern.empty())
+        return;
+      DynamicSparsityPattern cells(locally_relevant_dofs);
+      DoFTools::make_sparsity_pattern(dof_handler, cells, constraints, false);
+      cell_pattern.resize(locally_relevant_dofs.n_elements());
+      unsigned int k = 0;
+      for (const auto row : locally_relevant_dofs)
+        {
+          auto &columns = cell_pattern[k++];
+          columns.reserve(cells.row_length(row));
+          for (auto entry = cells.begin(row); entry != cells.end(row); ++entry)
+            columns.push_back(entry->column());
+        }
+    };
+    // deal.II's route: a DynamicSparsityPattern, distributed to the rows'
+    // owners, then the Epetra graph from it by global indices.
+    const auto by_dynamic_pattern = [&](TrilinosWrappers::SparseMatrix &matrix) {
+      IndexSet rows = locally_relevant_dofs;
+      std::vector<types::global_dof_index> extra;
+      for (const auto &g : groups)
+        extra.insert(extra.end(), g.begin(), g.end());
+      std::sort(extra.begin(), extra.end());
+      extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+      rows.add_indices(extra.begin(), extra.end());
+      rows.compress();
+      DynamicSparsityPattern dsp(rows);
+      if (rows == locally_relevant_dofs)
+        {
+          fill_cell_pattern();
+          unsigned int k = 0;
+          for (const auto row : locally_relevant_dofs)
+            {
+              const auto &columns = cell_pattern[k++];
+              dsp.add_entries(row, columns.begin(), columns.end(), true);
+            }
+        }
+      else // contact rows owned elsewhere: the cells' loop into the wider row set
+        DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+      for (const auto &g : groups)
+        constraints.add_entries_local_to_global(g, dsp, false);
+      SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs, mpi_communicator, rows);
+      matrix.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
+    };
+    if (Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
       {
-        groups = contact->couplings();
-        std::vector<types::global_dof_index> extra;
-        for (const auto &g : groups)
-          extra.insert(extra.end(), g.begin(), g.end());
-        std::sort(extra.begin(), extra.end());
-        extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
-        rows.add_indices(extra.begin(), extra.end());
-        rows.compress();
+        by_dynamic_pattern(system_matrix);
+        return;
       }
-    DynamicSparsityPattern dsp(rows);
-    if (rows == locally_relevant_dofs)
+    // One process: the graph straight from the kept cell rows and the
+    // contact couplings (serial_matrix.cc): the full tube crush's 177
+    // patterns cost 2.9 G instructions by deal.II's route, 2.0 G of it in
+    // the DynamicSparsityPattern, the global-index insertion and the sort.
+    fill_cell_pattern();
+    make_serial_matrix(cell_pattern, groups, constraints,
+                       locally_owned_dofs.make_trilinos_map(mpi_communicator, false), system_matrix);
+    // Test only (ANVIL_PATTERN_CHECK): the same graph as deal.II's route?
+    static const bool check = std::getenv("ANVIL_PATTERN_CHECK") != nullptr;
+    if (check)
       {
-        // The cells' couplings change only with the mesh and the
-        // constraints; each new contact pattern (the tube's ~180 on its
-        // crush) copies them instead of looping over the cells again
-        // (~6.6 M instructions there, most of it condensing each cell's
-        // dofs through AffineConstraints).
-        if (cell_pattern.empty())
-          {
-            DynamicSparsityPattern cells(locally_relevant_dofs);
-            DoFTools::make_sparsity_pattern(dof_handler, cells, constraints, false);
-            cell_pattern.resize(locally_relevant_dofs.n_elements());
-            unsigned int k = 0;
-            for (const auto row : locally_relevant_dofs)
-              {
-                auto &columns = cell_pattern[k++];
-                columns.reserve(cells.row_length(row));
-                for (auto entry = cells.begin(row); entry != cells.end(row); ++entry)
-                  columns.push_back(entry->column());
-              }
-          }
-        unsigned int k = 0;
-        for (const auto row : locally_relevant_dofs)
-          {
-            const auto &columns = cell_pattern[k++];
-            dsp.add_entries(row, columns.begin(), columns.end(), true);
-          }
+        TrilinosWrappers::SparseMatrix reference;
+        by_dynamic_pattern(reference);
+        const std::string difference = compare_graphs(system_matrix, reference);
+        AssertThrow(difference.empty(), ExcMessage("ANVIL_PATTERN_CHECK: " + difference));
+        std::printf("ANVIL_PATTERN_CHECK: %u rows, %u entries, equal to deal.II's\n",
+                    static_cast<unsigned int>(system_matrix.m()),
+                    static_cast<unsigned int>(system_matrix.n_nonzero_elements()));
       }
-    else // contact rows owned elsewhere: the cells' loop into the wider row set
-      DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
-    for (const auto &g : groups)
-      constraints.add_entries_local_to_global(g, dsp, false);
-    SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs, mpi_communicator, rows);
-    system_matrix.reinit(locally_owned_dofs, locally_owned_dofs, dsp, mpi_communicator);
   }
 
   template <int dim>
@@ -295,19 +337,37 @@ namespace anvil
     // Axisymmetric: nodes on the axis (x = 0) do not move radially.
     if (!axisymmetric)
       return;
+    // Called for every step's predictor constraints: the radial dof at each
+    // vertex found once per call, a cell's dofs and size only near the axis.
+    std::vector<unsigned int> radial_dof(GeometryInfo<dim>::vertices_per_cell, fe.n_dofs_per_cell());
+    if (fe.has_support_points())
+      for (const unsigned int v : GeometryInfo<dim>::vertex_indices())
+        for (unsigned int i = 0; i < fe.n_dofs_per_cell(); ++i)
+          if (fe.system_to_component_index(i).first == 0 &&
+              fe.get_unit_support_points()[i].distance(GeometryInfo<dim>::unit_cell_vertex(v)) < 1e-12)
+            {
+              radial_dof[v] = i;
+              break;
+            }
     std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
     for (const auto &cell : dof_handler.active_cell_iterators())
       if (!cell->is_artificial())
         {
-          cell->get_dof_indices(dofs);
+          double diameter = -1;
+          bool   have_dofs = false;
           for (const unsigned int v : cell->vertex_indices())
-            if (std::abs(cell->vertex(v)[0]) < 1e-12 * cell->diameter())
-              for (unsigned int i = 0; i < dofs.size(); ++i)
-                if (fe.system_to_component_index(i).first == 0 && fe.has_support_points() &&
-                    fe.get_unit_support_points()[i].distance(
-                      GeometryInfo<dim>::unit_cell_vertex(v)) < 1e-12 &&
-                    !c.is_constrained(dofs[i]) && locally_relevant_dofs.is_element(dofs[i]))
-                  c.add_line(dofs[i]);
+            {
+              const double x = std::abs(cell->vertex(v)[0]);
+              if (x != 0 && diameter < 0)
+                diameter = cell->diameter();
+              if (radial_dof[v] == fe.n_dofs_per_cell() || !(x == 0 || x < 1e-12 * diameter))
+                continue;
+              if (!have_dofs)
+                cell->get_dof_indices(dofs), have_dofs = true;
+              const auto dof = dofs[radial_dof[v]];
+              if (!c.is_constrained(dof) && locally_relevant_dofs.is_element(dof))
+                c.add_line(dof);
+            }
         }
   }
 

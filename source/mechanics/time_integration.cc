@@ -25,15 +25,6 @@ namespace anvil
 
   namespace
   {
-    /**
-     * dst = src for two vectors with the same local layout on every process
-     * (the same elements, ghosts included, in the same order): the local
-     * values copied. deal.II 9.4's operator= imports through a new
-     * Epetra_Import whenever the two were made with different communicator
-     * objects, which every separately constructed vector is (~65 000
-     * instructions per copy of the tube's 2 900 dofs). Otherwise, or where
-     * any process's layouts differ, operator= (collective, so decided by all).
-     */
     /// Whether this process holds the same elements of @p a and @p b in the same order.
     bool same_local_layout(const TrilinosWrappers::MPI::Vector &a,
                            const TrilinosWrappers::MPI::Vector &b)
@@ -43,22 +34,6 @@ namespace anvil
              (p.NumMyElements() == q.NumMyElements() &&
               std::equal(p.MyGlobalElements(), p.MyGlobalElements() + p.NumMyElements(),
                          q.MyGlobalElements()));
-    }
-
-    void copy_values(TrilinosWrappers::MPI::Vector &dst, const TrilinosWrappers::MPI::Vector &src,
-                     const MPI_Comm communicator)
-    {
-      const Epetra_BlockMap &b = src.trilinos_vector().Map();
-      bool same = same_local_layout(dst, src);
-      if (Utilities::MPI::n_mpi_processes(communicator) > 1)
-        same = Utilities::MPI::min(same ? 1 : 0, communicator) == 1;
-      if (!same)
-        {
-          dst = src;
-          return;
-        }
-      const double *const from = src.trilinos_vector()[0];
-      std::copy(from, from + b.NumMyElements(), dst.trilinos_vector()[0]);
     }
   } // namespace
 
@@ -108,7 +83,8 @@ namespace anvil
     // mass (exact for a uniform body force on a free body; zero at rest).
     current_time_step = 1;
     assemble(false, 0);
-    TrilinosWrappers::MPI::Vector lumped(locally_owned_dofs, mpi_communicator);
+    TrilinosWrappers::MPI::Vector lumped;
+    lumped.reinit(system_rhs);
     lumped_mass(lumped);
     for (const auto i : locally_owned_dofs)
       if (!constraints.is_constrained(i) && lumped(i) > 0)
@@ -226,12 +202,12 @@ namespace anvil
             v_new[k] = v_old[k] + dt * ((1 - newmark_gamma) * a_old[k] + newmark_gamma * a_new[k]);
           }
         energy_audit.algorithmic_dissipation += step_algorithmic_dissipation(du, a, v);
-        copy_values(acceleration_old_ghosted, a, mpi_communicator);
-        copy_values(velocity_old_ghosted, v, mpi_communicator);
-        copy_values(velocity_ghosted, velocity_old_ghosted, mpi_communicator);
+        acceleration_old_ghosted = a;
+        velocity_old_ghosted = v;
+        velocity_ghosted = velocity_old_ghosted;
         acceleration_old.swap(a);
         velocity_old.swap(v);
-        copy_values(static_residual_old, internal_force, mpi_communicator);
+        static_residual_old = internal_force;
         static_residual_old -= external_force;
         energy_audit.kinetic = kinetic_energy(velocity_ghosted);
       }
@@ -240,7 +216,7 @@ namespace anvil
     // r = f_int + M a − f_ext at the constrained dofs (reactions.csv); the
     // audit takes them there only, so that an unbalanced free dof shows up
     // as an error instead of being counted as work.
-    copy_values(reaction_force, internal_force, mpi_communicator);
+    reaction_force = internal_force;
     reaction_force += inertia_force;
     reaction_force -= external_force;
     TrilinosWrappers::MPI::Vector mean(external_force);
@@ -260,10 +236,10 @@ namespace anvil
         }
     }
     energy_audit.external_work += 0.5 * (mean * du);
-    copy_values(mean, internal_force, mpi_communicator);
+    mean = internal_force;
     mean += internal_force_old;
     energy_audit.internal_work += 0.5 * (mean * du);
-    copy_values(mean, contact_force, mpi_communicator);
+    mean = contact_force;
     mean += contact_force_old;
     energy_audit.contact_work += 0.5 * (mean * du);
     compute_step_audit();
@@ -293,7 +269,7 @@ namespace anvil
                       energy_audit.elastic_energy, by_fe_values);
       }
 
-    copy_values(previous_increment, du, mpi_communicator);
+    previous_increment = du;
     if (contact)
       contact->commit();
     material_temperature_old = material_temperature;
@@ -301,12 +277,12 @@ namespace anvil
     for (auto &p : points.raw())
       if (p)
         p->commit();
-    copy_values(owned_old_solution, owned_solution, mpi_communicator);
-    copy_values(old_solution, owned_solution, mpi_communicator);
-    copy_values(internal_force_old, internal_force, mpi_communicator);
-    copy_values(external_force_old, external_force, mpi_communicator);
-    copy_values(reaction_force_old, reaction_force, mpi_communicator);
-    copy_values(contact_force_old, contact_force, mpi_communicator);
+    owned_old_solution = owned_solution;
+    old_solution = owned_solution;
+    internal_force_old = internal_force;
+    external_force_old = external_force;
+    reaction_force_old = reaction_force;
+    contact_force_old = contact_force;
   }
 
   template <int dim>
@@ -341,7 +317,8 @@ namespace anvil
   double MechanicalProblem<dim>::kinetic_energy(const TrilinosWrappers::MPI::Vector &v) const
   {
     // ½ vᵀ M v with the mass the audit's other terms use (mass_product).
-    TrilinosWrappers::MPI::Vector mv(locally_owned_dofs, mpi_communicator);
+    TrilinosWrappers::MPI::Vector mv;
+    mv.reinit(system_rhs); // its layout object: v and mv share it on one process
     mass_product(v, mv);
     double energy = 0;
     // By the local arrays where v has mv's layout (one process): the same

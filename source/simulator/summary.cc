@@ -46,6 +46,10 @@ namespace anvil
     s.set("wall_time", MPI_Wtime() - wall_start);
     for (const auto &[section, seconds] : timer->get_summary_data(TimerOutput::total_wall_time))
       s.set("wall_time_per_phase", section, Utilities::MPI::max(seconds, mpi_communicator));
+    // CPU seconds per phase, summed over the processes: what a loaded
+    // machine does not inflate (contrib/bench/perf.py's CPU ratio).
+    for (const auto &[section, seconds] : timer->get_summary_data(TimerOutput::total_cpu_time))
+      s.set("cpu_time_per_phase", section, Utilities::MPI::sum(seconds, mpi_communicator));
     if (mechanical)
       s.set("assembly_cells_per_second_per_process",
             Utilities::MPI::min(mechanical->last_assembly_rate(), mpi_communicator));

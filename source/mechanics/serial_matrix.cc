@@ -1,0 +1,126 @@
+// The one-process system matrix from kept rows (serial_matrix.h).
+#include <anvil/mechanics/serial_matrix.h>
+
+#include <Epetra_CrsGraph.h>
+#include <Epetra_CrsMatrix.h>
+
+#include <algorithm>
+#include <iterator>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  namespace
+  {
+    /**
+     * A graph whose rows the caller inserts sorted and without repeats:
+     * FillComplete() then skips its per-row shell sort (Epetra keeps
+     * these flags protected; deal.II's trilinos_sparse_matrix.cc derives
+     * from Epetra_CrsGraph to set one the same way).
+     */
+    class SortedGraph : public Epetra_CrsGraph
+    {
+    public:
+      SortedGraph(const Epetra_Map &map, const int *row_lengths)
+        : Epetra_CrsGraph(Copy, map, map, row_lengths, true)
+      {}
+      // (Repeats are private to Epetra: its merge pass stays, a linear scan.)
+      void declare_sorted() { SetSorted(true); }
+    };
+  } // namespace
+
+  void make_serial_matrix(const std::vector<std::vector<types::global_dof_index>> &cell_rows,
+                          const std::vector<std::vector<types::global_dof_index>> &couplings,
+                          const AffineConstraints<double>                        &constraints,
+                          const Epetra_Map                                        &map,
+                          TrilinosWrappers::SparseMatrix                          &matrix)
+  {
+    const unsigned int n = cell_rows.size();
+    AssertThrow(static_cast<int>(n) == map.NumMyElements() && map.LinearMap() && map.MinMyGID() == 0,
+                ExcMessage("make_serial_matrix: one process, dofs 0 .. n-1"));
+    // The contact rows' extra columns: each group's dofs condensed (a
+    // constrained dof gives its masters; AffineConstraints::make_sorted_row_list),
+    // every one coupled with every one, and a constrained dof's diagonal.
+    std::vector<std::vector<int>> extra(n);
+    std::vector<int>              closure;
+    for (const auto &group : couplings)
+      {
+        closure.clear();
+        for (const auto i : group)
+          if (const auto *masters = constraints.get_constraint_entries(i))
+            {
+              for (const auto &m : *masters)
+                closure.push_back(m.first);
+              extra[i].push_back(i);
+            }
+          else
+            closure.push_back(i);
+        std::sort(closure.begin(), closure.end());
+        closure.erase(std::unique(closure.begin(), closure.end()), closure.end());
+        for (const int r : closure)
+          extra[r].insert(extra[r].end(), closure.begin(), closure.end());
+      }
+
+    // Rows as CRS arrays: the cells' sorted columns merged with the extra ones.
+    std::vector<int> offsets(n + 1, 0), columns, lengths(n);
+    std::size_t      total = 0;
+    for (unsigned int r = 0; r < n; ++r)
+      total += cell_rows[r].size() + extra[r].size();
+    columns.reserve(total);
+    for (unsigned int r = 0; r < n; ++r)
+      {
+        auto &more = extra[r];
+        if (more.empty())
+          columns.insert(columns.end(), cell_rows[r].begin(), cell_rows[r].end());
+        else
+          {
+            std::sort(more.begin(), more.end());
+            more.erase(std::unique(more.begin(), more.end()), more.end());
+            std::set_union(cell_rows[r].begin(), cell_rows[r].end(), more.begin(), more.end(),
+                           std::back_inserter(columns));
+          }
+        offsets[r + 1] = columns.size();
+        lengths[r]     = offsets[r + 1] - offsets[r];
+      }
+
+    SortedGraph graph(map, lengths.data());
+    for (unsigned int r = 0; r < n; ++r)
+      if (lengths[r] > 0)
+        {
+          const int ierr = graph.InsertMyIndices(r, lengths[r], columns.data() + offsets[r]);
+          AssertThrow(ierr >= 0, ExcMessage("make_serial_matrix: Epetra InsertMyIndices " +
+                                            std::to_string(ierr)));
+        }
+    graph.declare_sorted();
+    graph.FillComplete(map, map);
+    graph.OptimizeStorage();
+    // deal.II's matrix takes an Epetra matrix's graph (reinit from the
+    // matrix, its values not copied): the one way in without a pattern.
+    Epetra_CrsMatrix on_graph(Copy, graph);
+    on_graph.FillComplete(map, map);
+    matrix.reinit(on_graph, false);
+  }
+
+  std::string compare_graphs(const TrilinosWrappers::SparseMatrix &a,
+                             const TrilinosWrappers::SparseMatrix &b)
+  {
+    const Epetra_CrsGraph &p = a.trilinos_matrix().Graph(), &q = b.trilinos_matrix().Graph();
+    if (p.NumMyRows() != q.NumMyRows() || p.NumMyNonzeros() != q.NumMyNonzeros())
+      return "rows " + std::to_string(p.NumMyRows()) + " and " + std::to_string(q.NumMyRows()) +
+             ", entries " + std::to_string(p.NumMyNonzeros()) + " and " +
+             std::to_string(q.NumMyNonzeros());
+    if (!p.RowMap().SameAs(q.RowMap()) || !p.ColMap().SameAs(q.ColMap()))
+      return "the row or column maps differ";
+    for (int r = 0; r < p.NumMyRows(); ++r)
+      {
+        int  np = 0, nq = 0;
+        int *cp = nullptr, *cq = nullptr;
+        p.ExtractMyRowView(r, np, cp);
+        q.ExtractMyRowView(r, nq, cq);
+        if (np != nq || !std::equal(cp, cp + np, cq))
+          return "row " + std::to_string(r) + " differs";
+      }
+    return "";
+  }
+} // namespace anvil
