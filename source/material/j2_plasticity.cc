@@ -1,9 +1,12 @@
 // The J2 model (seed §1.3, §2.3): its parameters and points, and the point's
-// update — the adiabatic fixed point around the return map (j2_return_map.cc)
-// and finish() (j2_finish.cc); the class is in j2_point.h.
+// update — the adiabatic fixed point around evaluate() (j2_evaluate.h, with
+// return_map() in j2_return_map.cc) and finish() (j2_finish.h), both inline
+// here; the class is in j2_point.h.
 #include <anvil/core/scene.h>
 #include <anvil/material/j2_plasticity.h>
 
+#include "j2_evaluate.h"
+#include "j2_finish.h"
 #include "j2_point.h"
 #include "j2_tangent.h"
 
@@ -35,6 +38,43 @@ namespace anvil
 
   namespace j2
   {
+    // Inline: update() is its only caller.
+    [[gnu::always_inline]] inline J2Point::Rotated J2Point::rotate(const Tensor<2, 3> &R) const
+    { // σ̃ = ΔR σ_n ΔRᵀ; σ_n as a full matrix, A = ΔR σ_n, σ̃_ij = A_il ΔR_jl.
+      static constexpr unsigned int row[6] = {0, 1, 2, 0, 0, 1}, col[6] = {0, 1, 2, 1, 2, 2};
+      Rotated             rotated;
+      const double *sn = stress_n.begin_raw();
+      if (R[0][2] == 0 && R[1][2] == 0 && R[2][0] == 0 && R[2][1] == 0 && sn[4] == 0 && sn[5] == 0)
+        {
+          // Plane strain and axisymmetric: ΔR and σₙ are [2x2 block, 0; 0, (2,2)].
+          // The products below are the general ones' nonzero terms (the others
+          // add exact zeros), so the values are the same.
+          const double A00 = R[0][0] * sn[0] + R[0][1] * sn[3], A01 = R[0][0] * sn[3] + R[0][1] * sn[1];
+          const double A10 = R[1][0] * sn[0] + R[1][1] * sn[3], A11 = R[1][0] * sn[3] + R[1][1] * sn[1];
+          const double A22 = R[2][2] * sn[2];
+          rotated.trial[0] = A00 * R[0][0] + A01 * R[0][1];
+          rotated.trial[1] = A10 * R[1][0] + A11 * R[1][1];
+          rotated.trial[2] = A22 * R[2][2];
+          rotated.trial[3] = A00 * R[1][0] + A01 * R[1][1];
+          rotated.trial[4] = rotated.trial[5] = 0;
+          rotated.lower[0]                    = A10 * R[0][0] + A11 * R[0][1];
+          rotated.lower[1] = rotated.lower[2] = 0;
+          return rotated;
+        }
+      const double S[3][3] = {{sn[0], sn[3], sn[4]}, {sn[3], sn[1], sn[5]}, {sn[4], sn[5], sn[2]}};
+      double       A[3][3];
+      for (unsigned int i = 0; i < 3; ++i)
+        for (unsigned int l = 0; l < 3; ++l)
+          A[i][l] = R[i][0] * S[0][l] + R[i][1] * S[1][l] + R[i][2] * S[2][l];
+      for (unsigned int c = 0; c < 6; ++c)
+        rotated.trial[c] = A[row[c]][0] * R[col[c]][0] + A[row[c]][1] * R[col[c]][1] +
+                           A[row[c]][2] * R[col[c]][2];
+      for (unsigned int c = 3; c < 6; ++c)
+        rotated.lower[c - 3] = A[col[c]][0] * R[row[c]][0] + A[col[c]][1] * R[row[c]][1] +
+                               A[col[c]][2] * R[row[c]][2];
+      return rotated;
+    }
+
     void J2Point::update(const MaterialIncrement &increment,
                          const MaterialRequest    request,
                          MaterialResponse        &response)
@@ -121,42 +161,6 @@ namespace anvil
         }
     }
 
-    // Inline: update() is its only caller (as when the class had internal linkage).
-    inline J2Point::Rotated J2Point::rotate(const Tensor<2, 3> &R) const
-    { // σ̃ = ΔR σ_n ΔRᵀ; σ_n as a full matrix, A = ΔR σ_n, σ̃_ij = A_il ΔR_jl.
-      static constexpr unsigned int row[6] = {0, 1, 2, 0, 0, 1}, col[6] = {0, 1, 2, 1, 2, 2};
-      Rotated             rotated;
-      const double *sn = stress_n.begin_raw();
-      if (R[0][2] == 0 && R[1][2] == 0 && R[2][0] == 0 && R[2][1] == 0 && sn[4] == 0 && sn[5] == 0)
-        {
-          // Plane strain and axisymmetric: ΔR and σₙ are [2x2 block, 0; 0, (2,2)].
-          // The products below are the general ones' nonzero terms (the others
-          // add exact zeros), so the values are the same.
-          const double A00 = R[0][0] * sn[0] + R[0][1] * sn[3], A01 = R[0][0] * sn[3] + R[0][1] * sn[1];
-          const double A10 = R[1][0] * sn[0] + R[1][1] * sn[3], A11 = R[1][0] * sn[3] + R[1][1] * sn[1];
-          const double A22 = R[2][2] * sn[2];
-          rotated.trial[0] = A00 * R[0][0] + A01 * R[0][1];
-          rotated.trial[1] = A10 * R[1][0] + A11 * R[1][1];
-          rotated.trial[2] = A22 * R[2][2];
-          rotated.trial[3] = A00 * R[1][0] + A01 * R[1][1];
-          rotated.trial[4] = rotated.trial[5] = 0;
-          rotated.lower[0]                    = A10 * R[0][0] + A11 * R[0][1];
-          rotated.lower[1] = rotated.lower[2] = 0;
-          return rotated;
-        }
-      const double S[3][3] = {{sn[0], sn[3], sn[4]}, {sn[3], sn[1], sn[5]}, {sn[4], sn[5], sn[2]}};
-      double       A[3][3];
-      for (unsigned int i = 0; i < 3; ++i)
-        for (unsigned int l = 0; l < 3; ++l)
-          A[i][l] = R[i][0] * S[0][l] + R[i][1] * S[1][l] + R[i][2] * S[2][l];
-      for (unsigned int c = 0; c < 6; ++c)
-        rotated.trial[c] = A[row[c]][0] * R[col[c]][0] + A[row[c]][1] * R[col[c]][1] +
-                           A[row[c]][2] * R[col[c]][2];
-      for (unsigned int c = 3; c < 6; ++c)
-        rotated.lower[c - 3] = A[col[c]][0] * R[row[c]][0] + A[col[c]][1] * R[row[c]][1] +
-                               A[col[c]][2] * R[row[c]][2];
-      return rotated;
-    }
   } // namespace j2
 
 
@@ -165,8 +169,12 @@ namespace anvil
                           const SymmetricTensor<2, 3>       *&strain_increment) const
   {
     // Every point of a J2Model is a J2Point (create_point(s)).
-    const auto &p    = static_cast<const j2::J2Point &>(point);
-    mean_stress      = &p.audit_mean;
+    const auto &p = static_cast<const j2::J2Point &>(point);
+    // σ̄ once per step here, not at every update; in this thread's scratch
+    // (valid until its next call: the audit reads it at once).
+    thread_local SymmetricTensor<2, 3> mean;
+    p.audit_mean_stress(mean);
+    mean_stress      = &mean;
     strain_increment = &p.audit_strain;
   }
 

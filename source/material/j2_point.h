@@ -2,9 +2,13 @@
 // that the files implementing it share, one concern each —
 //   j2_plasticity.cc  the model's parameters and factory, the update and its
 //                     adiabatic fixed point, the rotation of σₙ;
-//   j2_return_map.cc  trial state, yield test, return map, ΔT_ad (evaluate());
-//   j2_finish.cc      stress, consistent and adiabatic tangents, ∂σ/∂T, heat
+//   j2_evaluate.h     trial state, yield test, linear return, ΔT_ad (evaluate());
+//   j2_return_map.cc  the return map where it has no closed form;
+//   j2_finish.h       stress, consistent and adiabatic tangents, ∂σ/∂T, heat
 //                     sources (finish()).
+// evaluate() and finish() are inline in update() (their only caller): the
+// trial state is not passed through call frames (J2 bench, 3D plastic,
+// stress + tangent: 654 → 556 instructions per update with keep_for_audit()).
 // Trial carries one return map from evaluate() to finish().
 #pragma once
 
@@ -107,21 +111,33 @@ namespace anvil
         const J2Model::Kernel &k = model.kernel();
         return k.inline_yield ? k.yield.evaluate(eps, T) : model.hardening->evaluate(eps, T);
       }
-      /// σ̄ = ½(σ̃ₙ + σ) and Δε of this update (J2Model::last_step()): the
-      /// operations of the audit's mean_stress(), entry for entry.
-      void keep_for_audit(const MaterialIncrement &inc, const Rotated &rotated)
+      /// σ̃ₙ (shears symmetrised) and Δε of this update, for the audit's
+      /// σ̄ = ½(σ̃ₙ + σ) (audit_mean_stress()): only what an update must keep, σ̄
+      /// itself once per step, at commit.
+      [[gnu::always_inline]] void keep_for_audit(const MaterialIncrement &inc, const Rotated &rotated)
       {
-        static constexpr unsigned int row[6] = {0, 1, 2, 0, 0, 1}, col[6] = {0, 1, 2, 1, 2, 2};
+        double *r = audit_rotated.begin_raw();
         for (unsigned int c = 0; c < 3; ++c)
-          audit_mean[c][c] = 0.5 * (rotated.trial[c] + current[c][c]);
+          r[c] = rotated.trial[c];
         for (unsigned int c = 3; c < 6; ++c)
-          audit_mean[row[c]][col[c]] =
-            0.5 * ((rotated.trial[c] + rotated.lower[c - 3]) * 0.5 + current[row[c]][col[c]]);
+          r[c] = (rotated.trial[c] + rotated.lower[c - 3]) * 0.5;
         audit_strain = inc.strain_increment;
       }
 
     public:
-      SymmetricTensor<2, 3> audit_mean, audit_strain; // keep_for_audit()
+      /// σ̄ = ½(σ̃ₙ + σ) of the last update in @p mean (J2Model::last_step()):
+      /// the operations of the audit's mean_stress(), entry for entry.
+      void audit_mean_stress(SymmetricTensor<2, 3> &mean) const
+      {
+        const double *r = audit_rotated.begin_raw(), *s = current.begin_raw();
+        double       *m = mean.begin_raw();
+        for (unsigned int c = 0; c < 6; ++c)
+          m[c] = 0.5 * (r[c] + s[c]);
+      }
+      SymmetricTensor<2, 3> audit_strain; // keep_for_audit()
+
+    private:
+      SymmetricTensor<2, 3> audit_rotated; // keep_for_audit()
 
     private:
       static double equivalent_stress(const SymmetricTensor<2, 3> &sigma)

@@ -1,6 +1,6 @@
-// The J2 point's return map (seed §1.3, eq. 9–18): trial state at a
-// temperature, yield test, radial return to f = 0 or f̄ = 0, and the step's
-// heat sources and ΔT_ad — all the adiabatic fixed point iterates on.
+// The J2 point's return map (seed §1.3, eq. 9–18): the radial return to
+// f = 0 or f̄ = 0 by safeguarded Newton where it has no closed form (the
+// trial state and the closed form: evaluate(), j2_evaluate.h).
 #include <anvil/material/j2_plasticity.h>
 
 #include "j2_point.h"
@@ -129,120 +129,6 @@ namespace anvil
           dp = next;
         }
       throw MaterialPointError("the return map did not converge in 200 iterations");
-    }
-
-    void J2Point::evaluate(const MaterialIncrement &inc, const double T, const double dT,
-                           const Rotated &rotated, Trial &t) const
-    {
-      const ElasticLaw &el   = model.elastic;
-      const double      K    = el.bulk_modulus(T);
-      const double      G    = el.shear_modulus(T);
-      // Thermal strain over the step and its T-derivative (β(T), eq. 19).
-      const double      eth  = el.thermal_strain(T, dT);
-      t.T = T, t.dT = dT, t.K = K, t.G = G, t.eth = eth;
-      t.deth = el.thermal_strain_derivative(T, dT);
-      t.beta = el.thermal_expansion(T);
-      if (!(G > 0 && K > 0))
-        throw MaterialPointError(
-          "the elastic moduli are not positive at T = " + std::to_string(T) +
-          " K (modulus temperature factor g(T) = " +
-          std::to_string(el.shear_modulus() > 0 ? G / el.shear_modulus() : K / el.bulk_modulus()) +
-          ")");
-
-      // Trial state: rotated σ_n plus H(T) : (Δε − βΔT I), eq. (9), (10), (19),
-      // on the raw components (00, 11, 22, 01, 02, 12).
-      double *trial = t.trial, *de = t.de, *s = t.s;
-      const double *dstrain = inc.strain_increment.begin_raw();
-      for (unsigned int c = 0; c < 6; ++c)
-        de[c] = dstrain[c] - (c < 3 ? eth : 0.);
-      const double tr_de   = de[0] + de[1] + de[2];
-      const double mean_de = tr_de / 3;
-      t.tr_de              = tr_de;
-      // σ̃ₙ + H : Δεᵉ in one pass (a copy first became a memmove call).
-      for (unsigned int c = 0; c < 6; ++c)
-        trial[c] = rotated.trial[c] + (c < 3 ? K * tr_de + 2 * G * (de[c] - mean_de) : 2 * G * de[c]);
-      const double mean_trial = (trial[0] + trial[1] + trial[2]) / 3;
-      for (unsigned int c = 0; c < 6; ++c) // dev(trial)
-        s[c] = c < 3 ? trial[c] - mean_trial : trial[c];
-      const double norm2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] +
-                           2 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
-      // |dev σ_tr| and q_tr = √(3/2)|dev σ_tr| only where the yield test can
-      // pass: the square root is the longest latency of the elastic update.
-      double norm_s = 0, q_trial = 0;
-
-      double               dp = 0, H = 0;
-      HardeningLaw::Value &Y = t.Y, &Y_start = t.Y_start;
-      PerzynaLaw::Value   &V = t.V;
-      PerzynaLaw::Rate    &rate = t.rate;
-      // Y, Y_start, V and rate are read only after a plastic return (dp > 0),
-      // which sets them.
-      t.linear_return     = false;
-      t.return_iterations = 0;
-      if (model.plastic)
-        {
-          Y = Y_start = yield(eps_n, T);
-          if (!(Y.stress > 0))
-            throw MaterialPointError("the yield stress is " + std::to_string(Y.stress) +
-                                     " MPa <= 0 at T = " + std::to_string(T) +
-                                     " K (thermal softening removed all strength)");
-          // q_tr² against σᵥ² first, with a margin far above the rounding
-          // of either side: the test on q_tr itself decides, as ever.
-          if (1.5 * norm2 > (1 - 1e-10) * (Y.stress * Y.stress))
-            {
-              norm_s  = std::sqrt(norm2);
-              q_trial = std::sqrt(1.5) * norm_s;
-            }
-          if (q_trial > Y.stress)
-            {
-              if (model.viscosity.active())
-                rate = model.viscosity.at(T, inc.time_step);
-              else
-                rate.dt = inc.time_step;
-              if (model.kernel().linear && !rate.active() && !model.johnson_cook_rate.active())
-                {
-                  // Linear hardening, rate-independent: r is linear in Δε̄.
-                  const double h = Y_start.slope;
-                  if (!(h >= 0))
-                    {
-                      const double hi = q_trial / (3 * G);
-                      if (q_trial - 3 * G * hi - yield(eps_n + hi, T).stress > 0)
-                        throw no_plastic_solution(T);
-                    }
-                  dp                  = (q_trial - Y_start.stress) / (3 * G + h);
-                  V                   = PerzynaLaw::Value();
-                  t.return_iterations = 1;
-                  t.linear_return     = true;
-                  // (∂σᵥ/∂T at the end of the step: finish(), if asked.)
-                  Y.stress = Y_start.stress + h * dp;
-                }
-              else
-                dp = return_map(q_trial, G, T, rate, Y_start, t.return_iterations, Y, V);
-              H = Y.slope + V.derivative;
-            }
-        }
-      t.norm_s = norm_s, t.q_trial = q_trial, t.dp = dp, t.H = H;
-
-      // Heat sources over the step (always cheap; needed by the adiabatic loop).
-      double work = 0, dwork_dq = 0;
-      if (dp > 0)
-        {
-          // Ẇirr = σ̄ ε̄̇ (eq. 21) with σ̄ averaged over the step (exact for linear
-          // hardening); flow starts at the yield stress if the step began elastic.
-          const double q_end   = q_trial - 3 * G * dp;
-          const double q_start = std::max(q_n, Y_start.stress);
-          work                 = 0.5 * (q_start + q_end) * dp;
-          // d(work)/dq_trial with dΔε̄/dq_tr = 1/(3G + H), dq_end/dq_tr = H/(3G + H).
-          dwork_dq = 0.5 * (H * dp + q_start + q_end) / (3 * G + H);
-        }
-      t.work = work, t.dwork_dq = dwork_dq;
-      // Reversible volume change that heats or cools (doc/thermodynamics.md):
-      // with c at constant stress, the stress-producing part tr(Δε − βΔT I);
-      // with c at constant volume (the seed's eq. 8 and 22), all of tr Δε.
-      t.tr_rev = el.capacity_at_constant_volume ? tr_de + 3 * eth : tr_de;
-      // Sources per current volume, capacity per reference volume (ρ₀c/J per current volume).
-      t.rho_c = el.density * el.heat_capacity / inc.volume_ratio;
-      t.adiabatic_temperature_increment =
-        (el.taylor_quinney * work - 3 * K * t.beta * T * t.tr_rev) / t.rho_c;
     }
   } // namespace j2
 } // namespace anvil

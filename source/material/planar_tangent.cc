@@ -98,12 +98,14 @@ namespace anvil
       // X = I + Z: its 2x2 block as the Tensor sum gives it.
       const double X[2][2] = {{1 + Z[0][0], 0 + Z[0][1]}, {0 + Z[1][0], 1 + Z[1][1]}};
       double       XY[2][3];
+      #pragma GCC unroll 2
       for (unsigned int i = 0; i < 2; ++i)
         {
           for (unsigned int j = 0; j < 2; ++j)
             XY[i][j] = X[i][0] * Y[0][j] + X[i][1] * Y[1][j];
           XY[i][2] = y_out_of_plane ? X[i][0] * Y[0][2] + X[i][1] * Y[1][2] : 0.;
         }
+      #pragma GCC unroll 2
       for (unsigned int i = 0; i < 2; ++i)
         {
           for (unsigned int j = 0; j < 2; ++j)
@@ -138,6 +140,7 @@ namespace anvil
       };
       auto images = [&](const double v0, const double v1) {
         Images m;
+        #pragma GCC unroll 2
         for (unsigned int i = 0; i < 2; ++i)
           {
             m.Ah[i] = Ah[i][0] * v0 + Ah[i][1] * v1;
@@ -145,11 +148,13 @@ namespace anvil
             m.A[i]  = A[i][0] * v0 + A[i][1] * v1;
             m.pm[i] = PM[0][i] * v0 + PM[1][i] * v1;
           }
+        #pragma GCC unroll 3
         for (unsigned int j = 0; j < 3; ++j)
           m.qs[j] = QS[0][j] * v0 + QS[1][j] * v1;
         return m;
       };
       Images a_img[2], b_img[2];
+      #pragma GCC unroll 2
       for (unsigned int k = 0; k < 2; ++k)
         {
           a_img[k] = images((k == 0 ? 1. : 0.) - 0.5 * kin.dL[0][k],
@@ -193,6 +198,7 @@ namespace anvil
           const Images &a = a_img[k], &b = b_img[L];
           // Raw order 00, 11, 22, 01, 02, 12; (i, j) of the in-plane ones.
           static constexpr unsigned int ri[3] = {0, 1, 0}, rj[3] = {0, 1, 1}, raw[3] = {0, 1, 3};
+          #pragma GCC unroll 3
           for (unsigned int c = 0; c < 3; ++c)
             {
               const unsigned int i = ri[c], j = rj[c];
@@ -204,6 +210,7 @@ namespace anvil
               drot[raw[c]]      = 0.25 * (x_ij + x_ji);
             }
           if (out_of_plane)
+            #pragma GCC unroll 2
             for (unsigned int i = 0; i < 2; ++i) // (i, 2): x_2i = 0 (a, b in the plane)
               drot[4 + i] = 0.25 * (a.A[i] * b.qs[2] - b.A[i] * a.qs[2]);
           if (response.sensitivity_is_identity)

@@ -1,6 +1,9 @@
 // The J2 point's finish(): from one return map (evaluate()) the stress and
 // state, the consistent tangent and ∂σ/∂σ̃ₙ, ∂σ/∂T, the heat sources and the
-// partial derivatives of ΔT_ad the adiabatic tangent needs.
+// partial derivatives of ΔT_ad the adiabatic tangent needs. Inline in
+// update() (j2_plasticity.cc, its only includer), like evaluate().
+#pragma once
+
 #include <anvil/material/j2_plasticity.h>
 
 #include "j2_point.h"
@@ -71,8 +74,8 @@ namespace anvil
       }
     } // namespace
 
-    void J2Point::finish(const MaterialIncrement &inc, const MaterialRequest request, Trial &t,
-                         MaterialResponse &response)
+    [[gnu::always_inline]] inline void J2Point::finish(const MaterialIncrement &inc, const MaterialRequest request, Trial &t,
+                                MaterialResponse &response)
     {
       const ElasticLaw &el = model.elastic;
       const double      T = t.T, K = t.K, G = t.G, beta = t.beta, deth = t.deth;
