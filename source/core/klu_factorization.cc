@@ -411,7 +411,12 @@ namespace anvil
     b.trilinos_vector().NormInf(&b_norm);
     const double scale = matrix_norm * x_norm + b_norm;
     if (r_norm <= backward_error_limit * scale || !(scale > 0))
-      return;
+      {
+        // The kept pivots were fit for this matrix: the factors are, for
+        // every later right-hand side too (the heat stages' solves).
+        pivots_reused = false;
+        return;
+      }
     ++pivoting_retries;
     pivots_reused = false;
     if (direct)

@@ -8,6 +8,8 @@
 #include <arkode/arkode_arkstep.h>
 
 #include "arkode_integrator.h"
+#include "dirk_linear.h"
+#include "integrator_guard.h"
 
 #include <algorithm>
 #include <cmath>
@@ -28,33 +30,6 @@ namespace anvil
       {
         using std::runtime_error::runtime_error;
       };
-
-      /// Run @p f, turning exceptions into ARKode return codes (they must not
-      /// unwind through SUNDIALS' C frames).
-      template <typename F>
-      int guarded(std::string &message, F &&f)
-      {
-        try
-          {
-            return f();
-          }
-        catch (const SolverControl::NoConvergence &e)
-          {
-            message = "a linear solver did not converge (" + std::to_string(e.last_step) +
-                      " iterations, residual " + std::to_string(e.last_residual) + ")";
-            return 1;
-          }
-        catch (const std::exception &e)
-          {
-            message = e.what();
-            return -1;
-          }
-        catch (...)
-          {
-            message = "unknown exception in an ARKode callback";
-            return -1;
-          }
-      }
 
       /// (M − γJ)⁻¹ of the system as a deal.II preconditioner.
       struct NewtonPreconditioner
@@ -89,24 +64,6 @@ namespace anvil
             current_record->time = t;
           }
         return 0;
-      }
-
-      /// The first step of a call: the span cut into the fewest equal steps
-      /// that are at most `stretch` times the step the last call proposed.
-      /// ARKode clips a step at the stop time and never stretches one: started
-      /// from the proposal h just below the span (two_blocks: 4.5–5.1e-5 s for
-      /// 5e-5 s) it took h and then the remainder, two steps where one passes.
-      double first_step(const double span, const double proposal)
-      {
-        if (!(proposal > 0))
-          return 0.; // ARKode's own estimate
-        // The proposal carries the controller's safety factor (0.96) and
-        // error bias (1.5): a step of up to 1.25 times it passed the error
-        // test on two_blocks at every step (1.0: 13 of 79 steps in two, 1.15:
-        // 3, 1.25–1.5: 2, the contact's start).
-        constexpr double stretch = 1.25;
-        const double n = std::max(1., std::ceil(span / (stretch * proposal) - 1e-9));
-        return span / n;
       }
 
       /// ARKode's settings beyond deal.II's AdditionalData (called once it
@@ -167,9 +124,43 @@ namespace anvil
       }
     } // namespace
 
+    ButcherTable dirk_table(const unsigned int order)
+    {
+      ButcherTable table;
+      if (order <= 1)
+        {
+          table.q = 1; // backward Euler, as configure() gives ARKode
+          table.A = {{1.}};
+          table.b = table.c = {1.};
+          return table;
+        }
+      static const int ids[] = {ARKSTEP_DEFAULT_DIRK_2, ARKSTEP_DEFAULT_DIRK_3, ARKSTEP_DEFAULT_DIRK_4,
+                                ARKSTEP_DEFAULT_DIRK_5};
+      ARKodeButcherTable t =
+        ARKodeButcherTable_LoadDIRK(static_cast<ARKODE_DIRKTableID>(ids[std::min(order, 5u) - 2]));
+      const unsigned int s = t->stages;
+      table.q              = t->q;
+      table.p              = t->p;
+      table.A.assign(s, std::vector<double>(s, 0.));
+      for (unsigned int i = 0; i < s; ++i)
+        {
+          for (unsigned int j = 0; j < s; ++j)
+            table.A[i][j] = t->A[i][j];
+          table.b.push_back(t->b[i]);
+          table.c.push_back(t->c[i]);
+          if (t->d)
+            table.d.push_back(t->d[i]);
+        }
+      ARKodeButcherTable_Free(t);
+      return table;
+    }
+
     IntegratorStatistics integrate(ImplicitSystem &system, Vector &y, const double t0,
                                    const double t1, const IntegratorSettings &settings)
     {
+      if (settings.linear_stages && settings.linear && settings.jacobian_constant &&
+          system.can_solve_exactly() && (settings.fixed_step_size > 0 || settings.order >= 2))
+        return integrate_linear_dirk(system, y, t0, t1, settings, dirk_table(settings.order));
       IntegratorStatistics stats;
       const double         span = t1 - t0;
 

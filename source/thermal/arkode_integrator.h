@@ -37,6 +37,12 @@ namespace anvil
       /// this γ and the J of jacobian_vmult (a factorisation of that very
       /// matrix): then a Newton system is one solve, no Krylov iteration.
       virtual bool newton_matrix_is_exact(double /*gamma*/) const { return false; }
+      /// Whether setup_exact_newton_matrix can factorise M − γJ itself, every
+      /// coupling of J in it (a direct solver): the linear DIRK loop needs it.
+      virtual bool can_solve_exactly() const { return false; }
+      /// Build and factor M − γJ for this very γ (setup_newton_matrix may keep
+      /// a factorisation of a nearby γ as a preconditioner).
+      virtual int  setup_exact_newton_matrix(double gamma) { return setup_newton_matrix(gamma); }
       virtual int  mass_vmult(const Vector &v, Vector &Mv) = 0;
       /// x = M⁻¹ b to the absolute residual tolerance @p tol.
       virtual int  solve_mass(Vector &x, const Vector &b, double tol) = 0;
@@ -49,6 +55,10 @@ namespace anvil
       /// With linear: J = ∂f/∂y does not depend on t, so ARKode sets up the
       /// Newton matrix only when γ changes, not at every stage.
       bool         jacobian_constant        = false;
+      /// With linear, jacobian_constant and a system that can_solve_exactly():
+      /// anvil's own DIRK loop on ARKode's table (dirk_linear.h), one linear
+      /// solve per stage and none of ARKode's Newton machinery. False: ARKode.
+      bool         linear_stages            = true;
       double       relative_tolerance       = 1e-6;
       double       absolute_tolerance       = 1e-6;
       double       fixed_step_size          = 0; // 0: adaptive
@@ -83,7 +93,8 @@ namespace anvil
      * our own linear solver (GMRES on ARKode's exact M − γJ, preconditioned
      * by system.solve_newton_matrix), and our own mass solver. A fresh ARKode
      * object per call, i.e. reset at t0: operators may change between calls.
-     * @p y holds y(t0) on entry and y(t1) on successful return.
+     * @p y holds y(t0) on entry and y(t1) on successful return. Linear
+     * problems (settings.linear_stages) go to integrate_linear_dirk instead.
      */
     IntegratorStatistics integrate(ImplicitSystem &system, Vector &y, double t0, double t1,
                                    const IntegratorSettings &settings);

@@ -91,12 +91,21 @@ namespace anvil
       p.setup_newton(gamma);
       return 0;
     }
+    bool can_solve_exactly() const override
+    {
+      return p.use_direct && (!p.exchange.add_jacobian || p.exchange.add_matrix);
+    }
+    int setup_exact_newton_matrix(const double gamma) override
+    {
+      p.setup_newton(gamma, /*exact*/ true);
+      return 0;
+    }
     int solve_newton_matrix(Vector &x, const Vector &b) override { return p.solve_newton(x, b, 0); }
     bool newton_matrix_is_exact(const double gamma) const override
     {
       // KLU of M + γA with ARKode's γ and every coupling of J in it (the
       // exchange's too: setup_newton adds them).
-      return p.use_direct && p.current_gamma == gamma && (!p.exchange.add_jacobian || p.exchange.add_matrix);
+      return can_solve_exactly() && p.current_gamma == gamma;
     }
     int mass_vmult(const Vector &v, Vector &Mv) override
     {

@@ -89,11 +89,11 @@ namespace anvil
   }
 
   template <int dim>
-  void ThermalProblem<dim>::setup_newton(const double gamma)
+  void ThermalProblem<dim>::setup_newton(const double gamma, const bool exact)
   {
     // M − γ'J with γ' within 20 % of γ preconditions ARKode's GMRES on M − γJ
     // well (a few iterations): keep the factorisation.
-    if (current_gamma > 0 && std::abs(gamma / current_gamma - 1) < 0.2)
+    if (current_gamma > 0 && (exact ? gamma == current_gamma : std::abs(gamma / current_gamma - 1) < 0.2))
       return;
     TimerOutput::Scope t(timer, "Heat: Newton matrix");
     if (exchange.add_matrix)

@@ -397,7 +397,9 @@ namespace anvil
     double heat_content(const Vector &T_ghosted) const;
     unsigned int solve_newton(Vector &x, const Vector &b, double tolerance);
     unsigned int solve_mass(Vector &x, const Vector &b, double tolerance);
-    void   setup_newton(double gamma);
+    /// M + γA (− γ∂q/∂T) and its factorisation; without @p exact one of a
+    /// γ within 20 % is kept (a preconditioner of ARKode's GMRES).
+    void   setup_newton(double gamma, bool exact = false);
     /// The contact exchange's couplings into the tangent's, the Newton
     /// matrix's and mass_in_pattern's pattern (when new ones appeared).
     void   update_exchange_pattern();
