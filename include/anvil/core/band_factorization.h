@@ -14,6 +14,8 @@
 // the work follows the envelope the numbering makes, not the band's
 // rectangle, and a slack band costs little.
 
+#include <anvil/core/band_elimination.h>
+
 #include <vector>
 
 namespace anvil
@@ -46,6 +48,7 @@ namespace anvil
     unsigned long orderings = 0, factorizations = 0;
 
   private:
+    band_kernel::Band layout() const;
     bool choose_ordering(int size, const int *offsets, const int *columns);
     void place(const int *offsets, const int *columns); // positions, row ends
     void order(const int *offsets, const int *columns);
@@ -56,7 +59,7 @@ namespace anvil
     int                 ordered_lower = 0, ordered_upper = 0; // when ordered
     std::vector<int>    permutation; // new index of old row i
     std::vector<int>    inverse;     // old index of new row k
-    std::vector<double> band;        // column-major, stride 2·lower + upper + 1
+    std::vector<double> band;        // column-major (band_kernel::Band)
     std::vector<int>    pivot;       // row exchanged with row j at step j
     std::vector<int>    column_end;  // last nonzero row of L's column j, minus j
     std::vector<int>    column_top;  // first nonzero row of U's column j
