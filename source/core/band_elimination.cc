@@ -120,7 +120,7 @@ namespace anvil
       for (int j0 = 0; j0 < n; j0 += 4)
         {
           const int nb = std::min(4, n - j0), panel_end = j0 + nb - 1;
-          int       exchange[4] = {0, 0, 0, 0}, length[4] = {0, 0, 0, 0};
+          int       exchange[4] = {0, 0, 0, 0}, length[4] = {0, 0, 0, 0}, reach = panel_end;
           for (int k = 0; k < nb; ++k)
             {
               const int     j    = j0 + k;
@@ -133,6 +133,8 @@ namespace anvil
               column_end[j] = last;
               exchange[k]   = p;
               length[k]     = last;
+              // The columns right of the panel the exchanges reach: both rows'.
+              reach = std::max({reach, row_end[j], row_end[j + p]});
               if (p != 0)
                 {
                   for (int c = j; c <= panel_end; ++c)
@@ -145,8 +147,7 @@ namespace anvil
               // Fill follows U's row j down the multipliers.
               for (int i = 1; i <= last; ++i)
                 row_end[j + i] = std::max(row_end[j + i], row_end[j]);
-              if (last == 0)
-                continue;
+              // (U's row is recorded for the solve even where L's column is empty.)
               const int blocks = (last + 3) & ~3;
               for (int c = j + 1; c <= std::min(panel_end, row_end[j]); ++c)
                 {
@@ -155,12 +156,10 @@ namespace anvil
                     continue;
                   column_top[c] = std::min(column_top[c], j);
                   multiply_adds += last;
-                  axpy_blocks(a + 1, a[0], lj + 1, blocks);
+                  if (last > 0)
+                    axpy_blocks(a + 1, a[0], lj + 1, blocks);
                 }
             }
-          int reach = panel_end;
-          for (int k = 0; k < nb; ++k)
-            reach = std::max(reach, row_end[j0 + k]);
           if (reach <= panel_end)
             continue; // (a last panel of fewer than four columns ends here)
 
