@@ -3,6 +3,7 @@
 // that the elimination can skip the band's zeros (see the header).
 #include <deal.II/base/exceptions.h>
 
+#include <anvil/core/band_elimination.h>
 #include <anvil/core/band_factorization.h>
 
 #include <algorithm>
@@ -161,8 +162,7 @@ namespace anvil
         counted += starting[j + 1];
         envelope_flops += 2. * (furthest - j) * (counted - (j + 1));
       }
-    // Three zero rows below each column: the elimination's blocks of 4.
-    stride = 2 * lower + upper + 4;
+    stride = band_kernel::column_stride(lower, upper);
   }
 
   bool BandFactorization::fits(const int *offsets, const int *columns) const
@@ -178,6 +178,13 @@ namespace anvil
   }
 
   bool BandFactorization::analyze(const int size, const int *offsets, const int *columns)
+  {
+    const bool reordered = choose_ordering(size, offsets, columns);
+    place(offsets, columns);
+    return reordered;
+  }
+
+  bool BandFactorization::choose_ordering(const int size, const int *offsets, const int *columns)
   {
     if (size == n && !permutation.empty())
       {
@@ -195,186 +202,44 @@ namespace anvil
     return true;
   }
 
-  namespace
+  void BandFactorization::place(const int *offsets, const int *columns)
   {
-    // The loops below are vectorised (the build's -O2 vectorises only loops
-    // without a remainder) and compiled twice, for AVX2 (4 doubles an
-    // instruction) and for the base x86-64 (2), the processor choosing at
-    // load time. No FMA: each entry is rounded as in the scalar loop, so
-    // the answers do not depend on the processor.
-#define ANVIL_BAND_KERNEL                                                                          \
-  __attribute__((target_clones("avx2", "default"),                                                 \
-                 optimize("tree-loop-vectorize", "vect-cost-model=dynamic")))
-
-    /// cc[0, m) −= u l[0, m), m a multiple of 4.
-    ANVIL_BAND_KERNEL void axpy_blocks(double *__restrict cc, const double u,
-                                       const double *__restrict l, const int m)
-    {
-      for (int i = 0; i < m; i += 4)
-        {
-          cc[i] -= u * l[i];
-          cc[i + 1] -= u * l[i + 1];
-          cc[i + 2] -= u * l[i + 2];
-          cc[i + 3] -= u * l[i + 3];
-        }
-    }
-
-    /// Two columns at once, l read once for both (the same bits as two
-    /// calls: the columns do not depend on each other). A call of its own:
-    /// written inline in eliminate() it vectorised worse (+7 % on the
-    /// folded tube).
-    ANVIL_BAND_KERNEL void axpy_blocks2(double *__restrict a, const double ua,
-                                        double *__restrict b, const double ub,
-                                        const double *__restrict l, const int m)
-    {
-      for (int i = 0; i < m; i += 4)
-        {
-          const double l0 = l[i], l1 = l[i + 1], l2 = l[i + 2], l3 = l[i + 3];
-          a[i] -= ua * l0;
-          a[i + 1] -= ua * l1;
-          a[i + 2] -= ua * l2;
-          a[i + 3] -= ua * l3;
-          b[i] -= ub * l0;
-          b[i + 1] -= ub * l1;
-          b[i + 2] -= ub * l2;
-          b[i + 3] -= ub * l3;
-        }
-    }
-
-    /// dgbtf2 on the band (column-major, @p stride ≥ 2 lower + upper + 4,
-    /// A(i, j) at band[j stride + kv + i − j], the rows past kv + lower
-    /// zero padding): column j's pivot among its lower rows, the exchange
-    /// over the columns the rows reach (ju), the multipliers, the rank-1
-    /// update, skipping zero multipliers' tails and zero entries of U's row.
-    /// Returns the multiply-adds, or −1 − j for a zero column j.
-    /// Per-column overhead is what this kernel is about (the tube's columns
-    /// hold 10–30 multipliers): the update runs whole blocks of 4 rows (the
-    /// padding rows make them safe: l is zero past its last nonzero, so an
-    /// entry past it gets x − u·0 = x) over two columns of U at a time, and the pivot search is a max
-    /// reduction, then the first row that reaches it (the row partial
-    /// pivoting picks, as dgbtf2's idamax does).
-    ANVIL_BAND_KERNEL double eliminate(double *const band, const int n, const int lower,
-                                       const int upper, const int stride, int *const pivot,
-                                       int *const column_end)
-    {
-      const int kv            = lower + upper;
-      double    multiply_adds = 0;
-      int       ju            = 0;
-      const auto column = [&](const int c, const int j) {
-        return band + static_cast<std::size_t>(c) * stride + kv + j - c; // A(j, c)
-      };
-      for (int j = 0; j < n; ++j)
-        {
-          double *const lj = band + static_cast<std::size_t>(j) * stride + kv; // lj[i] = A(j+i, j)
-          int           last = std::min(lower, n - 1 - j);
-          while (last > 0 && lj[last] == 0.)
-            --last;
-          double m0 = 0, m1 = 0, m2 = 0, m3 = 0;
-          int    i = 0;
-          for (; i + 3 <= last; i += 4)
-            {
-              m0 = std::max(m0, std::abs(lj[i]));
-              m1 = std::max(m1, std::abs(lj[i + 1]));
-              m2 = std::max(m2, std::abs(lj[i + 2]));
-              m3 = std::max(m3, std::abs(lj[i + 3]));
-            }
-          for (; i <= last; ++i)
-            m0 = std::max(m0, std::abs(lj[i]));
-          const double largest = std::max(std::max(m0, m1), std::max(m2, m3));
-          if (!(largest > 0.))
-            return -1. - j;
-          int p = 0;
-          while (std::abs(lj[p]) != largest)
-            ++p;
-          pivot[j]      = j + p;
-          column_end[j] = last;
-          ju            = std::max(ju, std::min(j + upper + p, n - 1));
-          if (p != 0)
-            for (int c = j; c <= ju; ++c)
-              {
-                double *const cc = column(c, j);
-                std::swap(cc[0], cc[p]);
-              }
-          const double inverse_pivot = 1. / lj[0];
-          for (int i = 1; i <= last; ++i)
-            lj[i] *= inverse_pivot;
-          if (last == 0)
-            continue;
-          const double *const l      = lj + 1;
-          const int           blocks = (last + 3) & ~3;
-          int                 c      = j + 1, held = -1;
-          for (; c <= ju; ++c)
-            {
-              if (*column(c, j) == 0.)
-                continue;
-              multiply_adds += last;
-              if (held < 0)
-                {
-                  held = c;
-                  continue;
-                }
-              double *const a = column(held, j), *const b = column(c, j);
-              axpy_blocks2(a + 1, a[0], b + 1, b[0], l, blocks);
-              held = -1;
-            }
-          if (held >= 0)
-            {
-              double *const a = column(held, j);
-              axpy_blocks(a + 1, a[0], l, blocks);
-            }
-        }
-      return multiply_adds;
-    }
-
-    /// y = U⁻¹ L⁻¹ P y with eliminate()'s factors (dgbtrs).
-    ANVIL_BAND_KERNEL void substitute(const double *const band, const int n, const int kv,
-                                      const int stride, const int *const pivot,
-                                      const int *const column_end, double *const y)
-    {
-      // L: the exchanges and the multipliers in the order they were made.
-      for (int j = 0; j < n; ++j)
-        {
-          if (pivot[j] != j)
-            std::swap(y[j], y[pivot[j]]);
-          const double *__restrict l = band + static_cast<std::size_t>(j) * stride + kv + 1;
-          double *__restrict below   = y + j + 1;
-          const double yj            = y[j];
-          if (yj != 0.)
-            for (int i = 0; i < column_end[j]; ++i)
-              below[i] -= yj * l[i];
-        }
-      // U, column by column from the last.
-      for (int j = n - 1; j >= 0; --j)
-        {
-          const double *uj    = band + static_cast<std::size_t>(j) * stride + kv;
-          const int     above = std::min(j, kv);
-          y[j] /= uj[0];
-          const double yj = y[j];
-          if (yj == 0.)
-            continue;
-          const double *__restrict u = uj - above;
-          double *__restrict top     = y + j - above;
-          for (int i = 0; i < above; ++i)
-            top[i] -= yj * u[i];
-        }
-    }
-#undef ANVIL_BAND_KERNEL
-  } // namespace
+    // Each entry's place in the band and each row's last column, for every
+    // factorisation of this pattern.
+    const int diagonal = band_kernel::diagonal_row(lower, upper);
+    position.resize(offsets[n]);
+    pattern_row_end.resize(n);
+    for (int row = 0; row < n; ++row)
+      {
+        const int i = permutation[row];
+        int      &e = pattern_row_end[i];
+        e           = i;
+        for (int k = offsets[row]; k < offsets[row + 1]; ++k)
+          {
+            const int j = permutation[columns[k]];
+            position[k] = static_cast<std::size_t>(j) * stride + diagonal + i - j;
+            e           = std::max(e, j);
+          }
+      }
+  }
 
   void BandFactorization::factorize(const int *offsets, const int *columns, const double *values)
   {
-    const int kv = lower + upper;
-    band.assign(static_cast<std::size_t>(n) * stride, 0.);
-    for (int row = 0; row < n; ++row)
-      for (int k = offsets[row]; k < offsets[row + 1]; ++k)
-        {
-          const int i = permutation[row], j = permutation[columns[k]];
-          band[static_cast<std::size_t>(j) * stride + kv + i - j] = values[k];
-        }
+    (void)offsets;
+    (void)columns;
+    // Vector stores, not assign(): the zeroing streams the whole band
+    // (1.5 MB on two_blocks) and assign's element loop cost a tenth of the
+    // elimination.
+    band.resize(static_cast<std::size_t>(n) * stride);
+    band_kernel::zero(band.data(), band.size());
+    for (std::size_t k = 0; k < position.size(); ++k)
+      band[position[k]] = values[k];
     pivot.resize(n);
     column_end.resize(n);
-    const double multiply_adds =
-      eliminate(band.data(), n, lower, upper, stride, pivot.data(), column_end.data());
+    column_top.resize(n);
+    row_end = pattern_row_end;
+    const double multiply_adds = band_kernel::eliminate(layout(), pivot.data(), column_end.data(),
+                                                        row_end.data(), column_top.data());
     AssertThrow(multiply_adds >= 0,
                 ExcMessage("Band LU: the matrix is singular (column " +
                            std::to_string(inverse[static_cast<int>(-1. - multiply_adds)]) + ")"));
@@ -382,12 +247,18 @@ namespace anvil
     ++factorizations;
   }
 
+  band_kernel::Band BandFactorization::layout() const
+  {
+    return {const_cast<double *>(band.data()), n, lower, upper, stride,
+            band_kernel::diagonal_row(lower, upper)};
+  }
+
   void BandFactorization::solve(double *x, const double *b) const
   {
     std::vector<double> y(n);
     for (int i = 0; i < n; ++i)
       y[permutation[i]] = b[i];
-    substitute(band.data(), n, lower + upper, stride, pivot.data(), column_end.data(), y.data());
+    band_kernel::substitute(layout(), pivot.data(), column_end.data(), column_top.data(), y.data());
     for (int i = 0; i < n; ++i)
       x[i] = y[permutation[i]];
   }

@@ -14,6 +14,8 @@
 // the work follows the envelope the numbering makes, not the band's
 // rectangle, and a slack band costs little.
 
+#include <anvil/core/band_elimination.h>
+
 #include <vector>
 
 namespace anvil
@@ -46,6 +48,9 @@ namespace anvil
     unsigned long orderings = 0, factorizations = 0;
 
   private:
+    band_kernel::Band layout() const;
+    bool choose_ordering(int size, const int *offsets, const int *columns);
+    void place(const int *offsets, const int *columns); // positions, row ends
     void order(const int *offsets, const int *columns);
     void measure(const int *offsets, const int *columns); // widths, envelope
     bool fits(const int *offsets, const int *columns) const;
@@ -54,9 +59,13 @@ namespace anvil
     int                 ordered_lower = 0, ordered_upper = 0; // when ordered
     std::vector<int>    permutation; // new index of old row i
     std::vector<int>    inverse;     // old index of new row k
-    std::vector<double> band;        // column-major, stride 2·lower + upper + 1
+    std::vector<double> band;        // column-major (band_kernel::Band)
     std::vector<int>    pivot;       // row exchanged with row j at step j
     std::vector<int>    column_end;  // last nonzero row of L's column j, minus j
+    std::vector<int>    column_top;  // first nonzero row of U's column j
+    std::vector<std::size_t> position;   // the pattern's k-th entry in band
+    std::vector<int>    pattern_row_end; // each row's last column in the pattern
+    std::vector<int>    row_end;         // the same, grown by the elimination
     double              envelope_flops = 0;
   };
 } // namespace anvil

@@ -16,7 +16,7 @@
 // gives it, and the same calls: the same bits.
 //
 // Old pivots can be poor for new values without the condition estimate
-// noticing (growth in L). So after a solve with reused pivots the normwise
+// noticing (growth in L). So after the first solve with reused pivots the normwise
 // backward error |b − A x|∞ / (|A|∞ |x|∞ + |b|∞) is checked (one product
 // with A, a few per cent of a factorisation); above backward_error_limit the
 // matrix is factored with pivoting anew and the system solved again.
