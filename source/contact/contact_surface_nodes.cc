@@ -34,6 +34,37 @@ namespace anvil
       for (std::size_t k = 0; k < surface.nodes.size(); ++k)
         if (owner[surface.nodes[k]] < 0)
           owner[surface.nodes[k]] = static_cast<int>(k % P);
+    // Where the owners of the nodes' rows share out every surface evenly (a
+    // partition that cuts each body into slabs, Geometry/Partition = per
+    // body), the owner evaluates: the element's slave rows are then its own
+    // and most master rows too, where k mod P sent half of every process's
+    // rows to the other (np 2 strip per body, 48 k DoFs, per rank: contact
+    // 430 -> 284 M instructions, matrix compress 114 -> 0 M, np 1 518 M).
+    // Even: on every surface no process owns more than 1.25 n / P + 1 nodes.
+    if (P > 1)
+      {
+        std::vector<unsigned int> counts, sizes;
+        for (const auto &[b, surface] : surfaces)
+          {
+            unsigned int c = 0;
+            for (const unsigned int n : surface.nodes)
+              c += node_owned[n] ? 1 : 0;
+            counts.push_back(c);
+            sizes.push_back(surface.nodes.size());
+          }
+        std::vector<unsigned int> most(counts.size());
+        const int ierr = MPI_Allreduce(counts.data(), most.data(), static_cast<int>(counts.size()),
+                                       MPI_UNSIGNED, MPI_MAX, mpi_communicator);
+        AssertThrowMPI(ierr);
+        bool       even = true;
+        for (std::size_t i = 0; i < sizes.size(); ++i)
+          even = even && most[i] <= 1.25 * sizes[i] / P + 1;
+        if (even)
+          {
+            node_mine = node_owned;
+            return;
+          }
+      }
     node_mine.assign(node_reference.size(), false);
     for (unsigned int n = 0; n < node_reference.size(); ++n)
       node_mine[n] = owner[n] == static_cast<int>(rank);

@@ -269,9 +269,8 @@ namespace anvil
                       "partition boundary) or per body (every body cut into as many slabs of "
                       "equal cell count as there are processes, along its longest axis: every "
                       "process holds a share of every body and contact surface; the whole "
-                      "refined mesh is built on each process once; a checkpoint restarts only "
-                      "if one process wrote it, on one process: on several the restored "
-                      "state was wrong, cause not found, so that is refused).");
+                      "refined mesh is built on each process once; a checkpoint restarts on "
+                      "as many processes as wrote it).");
     prm.declare_entry("Mesh file", "", Patterns::Anything(),
                       "Type = gmsh: path of an ASCII .msh file (format 2.2 or 4.1, coordinates in mm, "
                       "quadrilaterals/hexahedra); relative to the scene file's directory.");

@@ -8,6 +8,7 @@
 #include <anvil/geometry/partition.h>
 
 #include <algorithm>
+#include <fstream>
 #include <map>
 #include <numeric>
 
@@ -118,10 +119,38 @@ namespace anvil
     triangulation.create_triangulation(description);
   }
 
+  template <int dim>
+  void PerBodyTriangulation<dim>::load(const std::string &filename)
+  {
+    parallel::fullydistributed::Triangulation<dim>::load(filename);
+    // Read the attached data again, from save()'s offset (the header says why).
+    unsigned int version = 0, n_processes = 0, n_fixed = 0, n_variable = 0, n_cells = 0;
+    {
+      std::ifstream info(filename + ".info");
+      std::string   header;
+      std::getline(info, header);
+      info >> version >> n_processes >> n_fixed >> n_variable >> n_cells;
+      AssertThrow(info, ExcIO());
+    }
+    if (n_fixed + n_variable == 0)
+      return;
+    const MPI_Comm     comm    = this->get_communicator();
+    const unsigned int n_local = this->n_locally_owned_active_cells();
+    unsigned int       first   = 0;
+    const int          ierr    = MPI_Exscan(&n_local, &first, 1, MPI_UNSIGNED, MPI_SUM, comm);
+    AssertThrowMPI(ierr);
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      first = 0; // MPI_Exscan leaves rank 0's result undefined
+    this->data_transfer.clear();
+    this->load_attached_data(first * sizeof(unsigned int), this->n_global_active_cells(), n_local,
+                             filename, n_fixed, n_variable);
+  }
+
 #define INSTANTIATE(dim)                                                                           \
   template std::vector<unsigned int> partition_per_body(Triangulation<dim> &, unsigned int);     \
   template void create_per_body(Triangulation<dim> &,                                            \
-                                parallel::fullydistributed::Triangulation<dim> &);
+                                parallel::fullydistributed::Triangulation<dim> &);        \
+  template class PerBodyTriangulation<dim>;
   ANVIL_INSTANTIATE(INSTANTIATE)
 #undef INSTANTIATE
 } // namespace anvil

@@ -20,7 +20,7 @@ namespace anvil
   Geometry<dim>::make_triangulation(const MPI_Comm communicator) const
   {
     if (partition == "per body")
-      return std::make_unique<parallel::fullydistributed::Triangulation<dim>>(communicator);
+      return std::make_unique<PerBodyTriangulation<dim>>(communicator);
     return std::make_unique<parallel::distributed::Triangulation<dim>>(communicator);
   }
 

@@ -148,15 +148,6 @@ namespace anvil
       {
         const std::string here = std::to_string(Utilities::MPI::n_mpi_processes(mpi_communicator));
         const auto        it   = state.entries.find("processes");
-        // Resumed on two processes, a per-body checkpoint gave a wrong state
-        // (plastic_block's reaction 17.10 against 11.58) while one process is
-        // exact; the cause (suspected: deal.II 9.4's fully distributed load
-        // placing the cells' attached data) is not found: refused, not wrong.
-        if (here != "1")
-          scene.fail(path, "= '" + restart_directory + "': Geometry/Partition = per body resumes "
-                             "only on 1 process (on several the restored state was wrong; cause "
-                             "not found); this run has " + here +
-                             ": rerun from t = 0 or resume on 1 process");
         if (it == state.entries.end() || it->second != here)
           scene.fail(path, "= '" + restart_directory + "' was written by " +
                              (it == state.entries.end() ? std::string("(unknown)") : it->second) +
