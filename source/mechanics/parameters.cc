@@ -118,8 +118,8 @@ namespace anvil
                       "The algebraic multigrid library of the iterative solver: Trilinos ML "
                       "(through deal.II) or MueLu (Tpetra; libanvil-muelu.so, loaded only when "
                       "chosen), both smoothed aggregation on the same near-null space and smoother. "
-                      "On plastic F-bar blocks MueLu needs 7-14 % fewer Krylov iterations at the "
-                      "same CPU and 8 % more peak memory (K is copied into Tpetra). "
+                      "On plastic F-bar blocks MueLu needs 5-14 % fewer Krylov iterations at about the "
+                      "same CPU and 8-12 % more peak memory (K is copied into Tpetra). "
                       "doc/linear_solver.md, session 16.");
     prm.declare_entry("Direct solver limit", "measured", Patterns::Anything(),
                       "Number of DoFs up to which 'automatic' chooses the direct solver; measured: "
