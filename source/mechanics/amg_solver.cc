@@ -157,8 +157,7 @@ namespace anvil
 
   namespace
   {
-    /// A preconditioner whose vmult is ApplyInverse of an Epetra_Operator
-    /// made elsewhere (deal.II's PreconditionBase keeps it in a protected member).
+    /// The module's entry points (muelu_preconditioner.cc).
     using MueLuCreate  = Epetra_Operator *(*)(const Epetra_CrsMatrix *, const Epetra_MultiVector *,
                                               Teuchos::ParameterList *, std::string *);
     using MueLuRefresh = void (*)(Epetra_Operator *);
