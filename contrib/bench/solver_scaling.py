@@ -19,7 +19,7 @@ Cases:
 
 Usage: solver_scaling.py BUILD_DIR OUT_DIR [--small] [--large] [--cases 2d,3d,strip]
        [--solvers iterative,direct] [--sizes '2d:64,128;3d:10'] [--np 2] [--partition 'per body']
-       [--set ENTRY=VALUE ...]
+       [--package ML|MueLu] [--tag NAME] [--set ENTRY=VALUE ...]
 
 --partition sets Geometry/Partition (default: the scene's, p4est's space-filling
 curve); 'per body' cuts every body in np slabs, so that the strip's contact
@@ -37,6 +37,12 @@ session 14's AMG for plastic flow (3D <= 30 Krylov iterations per solve),
 ANVIL_COARSE_AGGREGATION=coupled aggregates ML's levels 1 and coarser across
 the processes (MIS; doc/performance.md, session 13). OMPI_MCA_mpi_yield_when_idle=1
 keeps a waiting rank from spinning when the machine is shared.
+
+--package chooses Mechanics/Linear solver/AMG package (default the scene's, ML);
+its runs are named ..._muelu. --tag NAME appends _NAME to the run names (variants
+of the same size side by side). ANVIL_MUELU_PARAMETERS sets MueLu's parameters
+as ANVIL_ML_PARAMETERS sets ML's (e.g. 'smoother: params/chebyshev: degree:int=5;
+sa: use filtered matrix:bool=true'; doc/linear_solver.md, session 16).
 
 --set passes an entry to every run (e.g. 'Mechanics/Linear solver/AMG rebuild
 growth=0' for the hierarchy built at every solve, as before session 8).
@@ -70,9 +76,14 @@ def case_sets(case, n):
         "Mechanics/Linear solver/Tolerance=1e-8"]
 
 
-def run(build, out, case, n, solver, np, extra=(), partition=""):
+def run(build, out, case, n, solver, np, extra=(), partition="", package="", tag=""):
     scene, sets = case_sets(case, n)
     name = "%s_%d_%s_np%d" % (case, n, solver, np) + ("_" + partition.replace(" ", "") if partition else "")
+    if package and solver != "direct":
+        name += "_" + package.lower()
+        sets = sets + ["Mechanics/Linear solver/AMG package=" + package]
+    if tag:
+        name += "_" + tag
     directory = os.path.join(out, name)
     sets = sets + list(extra) + ["Mechanics/Linear solver/Type=" + solver, "Output/Directory=" + directory]
     if partition:
@@ -94,7 +105,8 @@ def run(build, out, case, n, solver, np, extra=(), partition=""):
         return None
     w = s["wall_time_per_phase"]
     newton = max(1, s["newton_iterations"])
-    r = dict(case=case, n=n, solver=solver, np=np, partition=partition or "default", dofs=s["dofs"], status=s["status"], newton=s["newton_iterations"],
+    r = dict(case=case, n=n, solver=solver, np=np, partition=partition or "default", package=package or "ML",
+             tag=tag, dofs=s["dofs"], status=s["status"], newton=s["newton_iterations"],
              krylov=s["linear_iterations"] / newton, user=user, memory=s["memory_per_dof_bytes"],
              per_newton=(w.get("Mechanics: assembly", 0) + w.get("Mechanics: linear solve", 0)) / newton,
              solve=w.get("Mechanics: linear solve", 0) / newton, assembly=w.get("Mechanics: assembly", 0) / newton)
@@ -126,6 +138,7 @@ def main():
     solvers = ["iterative", "direct"]
     np = 1
     partition = ""
+    package = tag = ""
     extra = [args[i + 1] for i, a in enumerate(args) if a == "--set"]
     for i, a in enumerate(args):
         if a == "--cases":
@@ -136,6 +149,10 @@ def main():
             np = int(args[i + 1])
         if a == "--partition":
             partition = args[i + 1]
+        if a == "--package":
+            package = args[i + 1]
+        if a == "--tag":
+            tag = args[i + 1]
     sizes = {"2d": [64, 128, 256] + ([512] if large else []), "3d": [6, 8, 10, 12, 20, 30] + ([40, 69] if large else []),
              "strip": [1000, 4000, 16000]}
     if small:
@@ -154,7 +171,7 @@ def main():
             for solver in solvers:
                 if solver == "direct" and n > DIRECT_LIMIT[case]:
                     continue
-                r = run(build, out, case, n, solver, np, extra, partition)
+                r = run(build, out, case, n, solver, np, extra, partition, package, tag)
                 if r:
                     results.append(r)
     # Appended (one run may add sizes to another's): the input of scaling_figure.py.

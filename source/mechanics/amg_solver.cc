@@ -14,8 +14,12 @@
 #include <cstdlib>
 #include <sstream>
 
+#include <dlfcn.h>
+
 DEAL_II_DISABLE_EXTRA_DIAGNOSTICS
+#include <Epetra_CrsMatrix.h>
 #include <Epetra_MultiVector.h>
+#include <Epetra_Operator.h>
 #include <Teuchos_ParameterList.hpp>
 DEAL_II_ENABLE_EXTRA_DIAGNOSTICS
 
@@ -25,6 +29,20 @@ namespace anvil
 
   namespace
   {
+    /// The near-null space over K's domain map (one zero vector if empty).
+    Epetra_MultiVector as_multivector(const TrilinosWrappers::SparseMatrix   &K,
+                                      const std::vector<std::vector<double>> &near_null_space)
+    {
+      const Epetra_Map  &map = K.trilinos_matrix().OperatorDomainMap();
+      Epetra_MultiVector modes(map, std::max<int>(1, near_null_space.size()));
+      for (unsigned int k = 0; k < near_null_space.size(); ++k)
+        {
+          AssertDimension(near_null_space[k].size(), static_cast<std::size_t>(map.NumMyElements()));
+          std::copy(near_null_space[k].begin(), near_null_space[k].end(), modes[k]);
+        }
+      return modes;
+    }
+
     std::string trimmed(const std::string &s)
     {
       const auto a = s.find_first_not_of(" \t"), b = s.find_last_not_of(" \t");
@@ -94,13 +112,7 @@ namespace anvil
     data.set_parameters(list, unused, K);
 
     // ML reads the modes (copied into its hierarchy) during initialize().
-    const Epetra_Map  &map = K.trilinos_matrix().OperatorDomainMap();
-    Epetra_MultiVector modes(map, std::max<int>(1, near_null_space.size()));
-    for (unsigned int k = 0; k < near_null_space.size(); ++k)
-      {
-        AssertDimension(near_null_space[k].size(), static_cast<std::size_t>(map.NumMyElements()));
-        std::copy(near_null_space[k].begin(), near_null_space[k].end(), modes[k]);
-      }
+    const Epetra_MultiVector modes = as_multivector(K, near_null_space);
     if (!near_null_space.empty())
       {
         list.set("null space: type", "pre-computed");
@@ -142,6 +154,102 @@ namespace anvil
     amg->initialize(K, list);
     return amg;
   }
+
+  namespace
+  {
+    /// The module's entry points (muelu_preconditioner.cc).
+    using MueLuCreate  = Epetra_Operator *(*)(const Epetra_CrsMatrix *, const Epetra_MultiVector *,
+                                              Teuchos::ParameterList *, std::string *);
+    using MueLuRefresh = void (*)(Epetra_Operator *);
+    struct MueLuModule
+    {
+      MueLuCreate  create;
+      MueLuRefresh refresh;
+    };
+
+    /// libanvil-muelu.so, from libanvil's own folder, loaded once.
+    const MueLuModule &muelu_module()
+    {
+#ifdef ANVIL_MUELU_MODULE
+      static const MueLuModule entries = [] {
+        Dl_info info;
+        AssertThrow(dladdr(reinterpret_cast<void *>(&muelu_module), &info) != 0 && info.dli_fname,
+                    ExcMessage("MueLu: cannot locate libanvil to find " ANVIL_MUELU_MODULE));
+        std::string path = info.dli_fname;
+        path             = path.substr(0, path.find_last_of('/') + 1) + ANVIL_MUELU_MODULE;
+        void *module     = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+        AssertThrow(module, ExcMessage(std::string("MueLu: cannot load ") + path + ": " + dlerror()));
+        MueLuModule m{reinterpret_cast<MueLuCreate>(dlsym(module, "anvil_muelu_create")),
+                      reinterpret_cast<MueLuRefresh>(dlsym(module, "anvil_muelu_refresh"))};
+        AssertThrow(m.create && m.refresh, ExcMessage("MueLu: " + path + " lacks anvil_muelu_create/refresh"));
+        return m;
+      }();
+      return entries;
+#else
+      AssertThrow(false, ExcMessage("MueLu: anvil was configured with ANVIL_WITH_MUELU=OFF"));
+      static const MueLuModule none{};
+      return none;
+#endif
+    }
+
+    /// A preconditioner whose vmult is ApplyInverse of MueLu's operator
+    /// (deal.II's PreconditionBase keeps it in a protected member; derived
+    /// from PreconditionAMG so that ReusedAMG keeps either kind).
+    class PreconditionOperator : public TrilinosWrappers::PreconditionAMG
+    {
+    public:
+      explicit PreconditionOperator(Epetra_Operator *op) { preconditioner = Teuchos::rcp(op); }
+      /// K's current values into MueLu's copy of the fine level.
+      void refresh() { muelu_module().refresh(preconditioner.get()); }
+    };
+  } // namespace
+
+  std::unique_ptr<TrilinosWrappers::PreconditionAMG>
+  build_muelu(const TrilinosWrappers::SparseMatrix   &K,
+              const std::vector<std::vector<double>> &near_null_space,
+              const IterativeSolverSettings          &settings)
+  {
+    AssertThrow(!settings.aggregate_blocks,
+                ExcMessage("MueLu: the aggregate-block smoother (ANVIL_FINE_SMOOTHER=blocks) is ML's"));
+    // ML's settings in build_amg(), in MueLu's names (its MasterList).
+    Teuchos::ParameterList list;
+    list.set("verbosity", "none");
+    list.set("multigrid algorithm", "sa");
+    list.set("number of equations", static_cast<int>(settings.components));
+    list.set("coarse: max size", 2000);
+    list.set("coarse: type", "KLU2");
+    list.set("aggregation: type", "uncoupled");
+    list.set("aggregation: drop tol", 0.02);
+    list.set("smoother: type", "CHEBYSHEV");
+    list.sublist("smoother: params").set("chebyshev: degree", static_cast<int>(settings.smoother_degree));
+    // R = Pᵀ applied through P, not stored. R A P as a triple product
+    // (`rap: triple product`, A P not kept) saves 4 % of the peak at 1.75
+    // times the CPU (Tpetra 13.2's serial kernel): not taken (doc/linear_solver.md).
+    list.set("transpose: use implicit", true);
+    if (const char *overrides = std::getenv("ANVIL_MUELU_PARAMETERS"))
+      apply_ml_overrides(list, overrides);
+
+    Epetra_MultiVector modes = as_multivector(K, near_null_space);
+    if (near_null_space.empty())
+      modes.PutScalar(1.);
+    std::string      error;
+    Epetra_Operator *op = muelu_module().create(&K.trilinos_matrix(), &modes, &list, &error);
+    AssertThrow(op, ExcMessage("MueLu: " + error));
+    return std::make_unique<PreconditionOperator>(op);
+  }
+
+  namespace
+  {
+    std::unique_ptr<TrilinosWrappers::PreconditionAMG>
+    build_preconditioner(const TrilinosWrappers::SparseMatrix   &K,
+                         const std::vector<std::vector<double>> &near_null_space,
+                         const IterativeSolverSettings          &settings)
+    {
+      if (settings.package == IterativeSolverSettings::Package::muelu)
+        return build_muelu(K, near_null_space, settings);
+      return build_amg(K, near_null_space, settings);
+    }
+  } // namespace
 
   unsigned int solve_gmres(const TrilinosWrappers::SparseMatrix    &K,
                            TrilinosWrappers::MPI::Vector           &x,
@@ -189,6 +297,8 @@ namespace anvil
         capped.max_iterations =
           std::min<unsigned int>(settings.max_iterations,
                                  std::ceil(settings.rebuild_growth * first_iterations));
+        if (auto *muelu = dynamic_cast<PreconditionOperator *>(amg.get()))
+          muelu->refresh();
         try
           {
             const AggregateBlockSmoother::ActiveScope active(smoother.get());
@@ -205,7 +315,7 @@ namespace anvil
     IterativeSolverSettings built = settings;
     if (!m.node_blocks)
       built.components = 1;
-    amg    = build_amg(K, m.modes, built);
+    amg    = build_preconditioner(K, m.modes, built);
     matrix = &K;
     ++n_builds;
     // After ML's set-up (the run's memory peak), so that the factors do not

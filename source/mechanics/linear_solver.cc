@@ -71,6 +71,8 @@ namespace anvil
     settings.rebuild_growth = parameters.amg_rebuild_growth;
     settings.smoother_degree = parameters.amg_smoother_degree;
     settings.components     = dim; // when the nodes' rows are consecutive
+    if (parameters.amg_package == "MueLu")
+      settings.package = IterativeSolverSettings::Package::muelu;
     if (const char *s = std::getenv("ANVIL_FINE_SMOOTHER"))
       settings.aggregate_blocks = std::string(s) == "blocks";
     const bool isochoric = parameters.amg_isochoric_modes;

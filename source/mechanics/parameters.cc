@@ -114,6 +114,13 @@ namespace anvil
                       "They are the low-energy fields of nearly incompressible (plastic) tangents; "
                       "they make the coarse levels denser (3D: 11 instead of 6 columns per "
                       "aggregate; peak memory +30 %). doc/linear_solver.md.");
+    prm.declare_entry("AMG package", "ML", Patterns::Selection("ML|MueLu"),
+                      "The algebraic multigrid library of the iterative solver: Trilinos ML "
+                      "(through deal.II) or MueLu (Tpetra; libanvil-muelu.so, loaded only when "
+                      "chosen), both smoothed aggregation on the same near-null space and smoother. "
+                      "On plastic F-bar blocks MueLu needs 5-14 % fewer Krylov iterations at about the "
+                      "same CPU and 8-12 % more peak memory (K is copied into Tpetra). "
+                      "doc/linear_solver.md, session 16.");
     prm.declare_entry("Direct solver limit", "measured", Patterns::Anything(),
                       "Number of DoFs up to which 'automatic' chooses the direct solver; measured: "
                       "where KLU and GMRES + AMG cost the same per Newton iteration on the plastic "
@@ -204,6 +211,7 @@ namespace anvil
     amg_rebuild_growth    = prm.get_double("AMG rebuild growth");
     amg_smoother_degree   = prm.get_integer("AMG smoother degree");
     amg_isochoric_modes   = prm.get_bool("AMG isochoric modes");
+    amg_package           = prm.get("AMG package");
     direct_solver         = prm.get("Direct solver");
     const std::string limit = prm.get("Direct solver limit");
     if (limit == "measured")

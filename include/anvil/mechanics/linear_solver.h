@@ -87,6 +87,9 @@ namespace anvil
     /// Fine level smoothed by AggregateBlockSmoother (block_smoother.h)
     /// instead of ML's Chebyshev; needs components > 1 or scalar rows.
     bool         aggregate_blocks = false;
+    /// The AMG library: Trilinos ML (deal.II's PreconditionAMG) or MueLu
+    /// (build_muelu(); ML's settings in MueLu's names).
+    enum class Package { ml, muelu } package = Package::ml;
   };
 
   /**
@@ -104,6 +107,24 @@ namespace anvil
   build_amg(const dealii::TrilinosWrappers::SparseMatrix &K,
             const std::vector<std::vector<double>>       &near_null_space,
             const IterativeSolverSettings                &settings);
+
+  /**
+   * The same hierarchy built by MueLu (smoothed aggregation on the same
+   * near-null space, node aggregation, drop tolerance 0.02, Chebyshev of
+   * the same degree, KLU2 on the coarse level ≤ 2000 rows). Debian's MueLu
+   * is Tpetra-only: the module libanvil-muelu.so
+   * (source/mechanics/muelu_preconditioner.cc), loaded from libanvil's
+   * folder on first use, so that runs on ML load none of Tpetra, Kokkos
+   * kernels, MueLu, Ifpack2, Amesos2, copies K into a Tpetra matrix and
+   * applies one V-cycle per vmult. ANVIL_MUELU_PARAMETERS overrides MueLu's
+   * parameters as ANVIL_ML_PARAMETERS does ML's. doc/linear_solver.md,
+   * session 16. Returned as a PreconditionAMG (its Epetra operator is
+   * MueLu's) so that ReusedAMG keeps either.
+   */
+  std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG>
+  build_muelu(const dealii::TrilinosWrappers::SparseMatrix &K,
+              const std::vector<std::vector<double>>       &near_null_space,
+              const IterativeSolverSettings                &settings);
 
   /**
    * GMRES + AMG whose hierarchy may outlive a solve. Building it

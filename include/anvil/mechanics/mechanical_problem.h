@@ -94,6 +94,7 @@ namespace anvil
       double       amg_rebuild_growth           = 0;
       unsigned int amg_smoother_degree          = 2;     // Chebyshev degree
       bool         amg_isochoric_modes          = false; // near-null space += u = G (x − c)
+      std::string  amg_package                  = "ML";  // ML | MueLu (the module libanvil-muelu.so)
       unsigned int direct_solver_limit          = 200000;
       std::string  direct_solver                = "auto"; // auto | klu | band
 
