@@ -71,6 +71,78 @@ namespace anvil
         const double eta = safety * std::pow(e[0], -k1 / p) * std::pow(e[1], k2 / p) * std::pow(e[2], -k3 / p);
         return std::min(eta, max_growth);
       }
+      /// The stages of one step, each one solve with M − γJ (J constant in
+      /// the step: the problem is linear), zᵢ = y + (M − γJ)⁻¹ (γ f(tᵢ, y) +
+      /// h Σⱼ<ᵢ aᵢⱼ fⱼ), then fᵢ = f(tᵢ, zᵢ) evaluated, not deduced, so that
+      /// the heat balance closes to round-off.
+      struct StageSolver
+      {
+        ImplicitSystem       &system;
+        const ButcherTable   &table;
+        IntegratorStatistics &stats;
+        std::string          &message;
+        std::vector<Vector>  &f;
+        Vector               &z, &b;
+        const bool            explicit_first;
+        double                setup_gamma = -1; // γ of the factorisation
+        bool                  have_f0     = false;
+
+        /// 0: done; > 0: recoverable (a shorter step); < 0: not.
+        int solve(const Vector &y, const double t, const double t_new, const double h)
+        {
+          for (unsigned int i = 0; i < table.stages(); ++i)
+            {
+              int          status = 0;
+              const double t_i    = table.c[i] == 1. ? t_new : t + table.c[i] * h;
+              if (i == 0 && explicit_first)
+                {
+                  if (!have_f0)
+                    {
+                      ++stats.rhs_evaluations;
+                      status  = guarded(message, [&] { return system.rhs(t, y, f[0]); });
+                      have_f0 = status == 0;
+                    }
+                  if (status != 0)
+                    return status;
+                  continue;
+                }
+              const double gamma = h * table.A[i][i];
+              if (gamma != setup_gamma)
+                {
+                  ++stats.linear_setups;
+                  status = guarded(message, [&] { return system.setup_exact_newton_matrix(gamma); });
+                  if (status != 0)
+                    return status;
+                  setup_gamma = gamma;
+                }
+              ++stats.rhs_evaluations;
+              status = guarded(message, [&] { return system.rhs(t_i, y, b); });
+              if (status != 0)
+                return status;
+              b *= gamma;
+              for (unsigned int j = 0; j < i; ++j)
+                if (table.A[i][j] != 0.)
+                  b.add(h * table.A[i][j], f[j]);
+              ++stats.linear_solves;
+              ++stats.nonlinear_iterations;
+              status = guarded(message, [&] {
+                const int n = system.solve_newton_matrix(z, b);
+                if (n < 0)
+                  return 1;
+                stats.linear_iterations += n;
+                return 0;
+              });
+              if (status != 0)
+                return status;
+              z += y;
+              ++stats.rhs_evaluations;
+              status = guarded(message, [&] { return system.rhs(t_i, z, f[i]); });
+              if (status != 0)
+                return status;
+            }
+          return 0;
+        }
+      };
     } // namespace
 
     IntegratorStatistics integrate_linear_dirk(ImplicitSystem &system, Vector &y, const double t0,
@@ -105,6 +177,7 @@ namespace anvil
       for (auto &v : f)
         v.reinit(y);
 
+      StageSolver stages{system, table, stats, message, f, z, b, explicit_first};
       if (guarded(message, [&] { return system.setup_jacobian(t0, y); }) != 0)
         return fail("the heat Jacobian could not be set up");
 
@@ -115,9 +188,8 @@ namespace anvil
         h = first_step(span, settings.initial_step_size);
       const double h_min       = 1e-14 * span;
       double       t           = t0;
-      double       setup_gamma = -1, proposal = 0;
+      double       proposal    = 0;
       double       errors[3]   = {1, 1, 1}; // ARKode's history starts at 1
-      bool         have_f0     = false;
       unsigned int failures_in_row = 0;
       while (t1 - t > 1e-12 * span)
         {
@@ -132,52 +204,7 @@ namespace anvil
           const double t_new = last ? t1 : t + h;
           ++stats.attempts;
 
-          int status = 0;
-          for (unsigned int i = 0; i < s && status == 0; ++i)
-            {
-              const double t_i = table.c[i] == 1. ? t_new : t + table.c[i] * h;
-              if (i == 0 && explicit_first)
-                {
-                  if (!have_f0)
-                    {
-                      ++stats.rhs_evaluations;
-                      status  = guarded(message, [&] { return system.rhs(t, y, f[0]); });
-                      have_f0 = status == 0;
-                    }
-                  continue;
-                }
-              const double gamma = h * table.A[i][i];
-              if (gamma != setup_gamma)
-                {
-                  ++stats.linear_setups;
-                  status = guarded(message, [&] { return system.setup_exact_newton_matrix(gamma); });
-                  if (status != 0)
-                    break;
-                  setup_gamma = gamma;
-                }
-              ++stats.rhs_evaluations;
-              status = guarded(message, [&] { return system.rhs(t_i, y, b); });
-              if (status != 0)
-                break;
-              b *= gamma;
-              for (unsigned int j = 0; j < i; ++j)
-                if (table.A[i][j] != 0.)
-                  b.add(h * table.A[i][j], f[j]);
-              ++stats.linear_solves;
-              ++stats.nonlinear_iterations;
-              status = guarded(message, [&] {
-                const int n = system.solve_newton_matrix(z, b);
-                if (n < 0)
-                  return 1;
-                stats.linear_iterations += n;
-                return 0;
-              });
-              if (status != 0)
-                break;
-              z += y;
-              ++stats.rhs_evaluations;
-              status = guarded(message, [&] { return system.rhs(t_i, z, f[i]); });
-            }
+          const int status = stages.solve(y, t, t_new, h);
           if (status < 0)
             return fail("a heat stage failed");
           if (status > 0)
@@ -231,8 +258,8 @@ namespace anvil
           stats.last_step    = t_new - t;
           stats.largest_step = std::max(stats.largest_step, stats.last_step);
           y.swap(y_new);
-          have_f0 = sa && explicit_first;
-          if (have_f0)
+          stages.have_f0 = sa && explicit_first;
+          if (stages.have_f0)
             f[0].swap(f[s - 1]); // f(t_new, z_s) = f(t_new, y)
           t = t_new;
           if (!adaptive)
