@@ -62,9 +62,8 @@ namespace anvil
                 e = (vol + dev * ((p == q ? 1. : 0.) - 1. / 3)) + e;
               else if (p == q)
                 e = 0.5 * dev + e;
-              // (The adiabatic rank-one term as add_outer_product() adds it.)
               if (f.rank_one)
-                e += f.amplification * (f.u[p] * r[q]);
+                e += f.u[p] * r[q];
               T[6 * p + q] = e;
             }
         }
