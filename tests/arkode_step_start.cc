@@ -9,6 +9,7 @@
 // - the answer stays within the integrator's tolerance of the closed form,
 //   and the step count does not depend on the process count (np 1 = np 2).
 #include "check.h"
+#include "diagonal_heat_system.h"
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
@@ -30,70 +31,12 @@ namespace
   anvil::testing::Checks check;
   bool                   root = true;
 
-  /// M ẏ = −K y, both diagonal: (M − γJ)⁻¹ and M⁻¹ are exact divisions.
-  struct Diagonal : thermal::ImplicitSystem
-  {
-    IndexSet            owned;
-    std::vector<double> m, k; // by global index
-    double              gamma = 0;
-
-    void reinit_vector(thermal::Vector &v) const override { v.reinit(owned, MPI_COMM_WORLD); }
-    int  rhs(double, const thermal::Vector &y, thermal::Vector &f) override
-    {
-      for (const auto i : owned)
-        f(i) = -k[i] * y(i);
-      f.compress(VectorOperation::insert);
-      return 0;
-    }
-    int setup_jacobian(double, const thermal::Vector &) override { return 0; }
-    int jacobian_vmult(const thermal::Vector &v, thermal::Vector &Jv) override { return rhs(0, v, Jv); }
-    int setup_newton_matrix(const double g) override
-    {
-      gamma = g;
-      return 0;
-    }
-    int solve_newton_matrix(thermal::Vector &x, const thermal::Vector &b) override
-    {
-      for (const auto i : owned)
-        x(i) = b(i) / (m[i] + gamma * k[i]);
-      x.compress(VectorOperation::insert);
-      return 1;
-    }
-    bool newton_matrix_is_exact(const double g) const override { return g == gamma; }
-    int  mass_vmult(const thermal::Vector &v, thermal::Vector &Mv) override
-    {
-      for (const auto i : owned)
-        Mv(i) = m[i] * v(i);
-      Mv.compress(VectorOperation::insert);
-      return 0;
-    }
-    int solve_mass(thermal::Vector &x, const thermal::Vector &b, double) override
-    {
-      for (const auto i : owned)
-        x(i) = b(i) / m[i];
-      x.compress(VectorOperation::insert);
-      return 0;
-    }
-  };
-
   /// @p calls calls of length @p span from y = 1, each starting from the last
   /// one's proposal; checks as in the file's head.
   void run(const double rate, const double span, const unsigned int calls, const bool one_step)
   {
-    const unsigned int n_procs = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
-    const unsigned int rank    = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
-    const unsigned int n       = 4;
-    Diagonal           system;
-    system.owned.set_size(n);
-    for (unsigned int i = 0; i < n; ++i)
-      if (i % n_procs == rank)
-        system.owned.add_index(i);
-    system.owned.compress();
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        system.m.push_back(1. + i);
-        system.k.push_back(rate * (1. + i) * (1. + 0.25 * i)); // rates k/m = rate (1 + i/4)
-      }
+    // ARKode's own path (not offered to the linear DIRK loop), unforced.
+    anvil::testing::DiagonalHeatSystem system(rate, 0., /*exact*/ false);
     thermal::Vector y;
     system.reinit_vector(y);
     for (const auto i : system.owned)

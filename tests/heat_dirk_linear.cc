@@ -10,6 +10,7 @@
 //   no more than ARKode's where several are needed;
 // - np 1 and np 2 (heat_dirk_linear_mpi2): the same counts, errors to round-off.
 #include "check.h"
+#include "diagonal_heat_system.h"
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
@@ -32,76 +33,11 @@ namespace
   bool                   root  = true;
   constexpr double       omega = 2.;
 
-  /// M ẏ = −K y + g(t), diagonal: (M − γJ)⁻¹ and M⁻¹ are exact divisions.
-  struct Forced : thermal::ImplicitSystem
-  {
-    IndexSet            owned;
-    std::vector<double> m, k; // by global index
-    double              gamma = 0;
-
-    void reinit_vector(thermal::Vector &v) const override { v.reinit(owned, MPI_COMM_WORLD); }
-    int  rhs(const double t, const thermal::Vector &y, thermal::Vector &f) override
-    {
-      for (const auto i : owned)
-        f(i) = -k[i] * y(i) + m[i] * omega * std::cos(omega * t) + k[i] * std::sin(omega * t);
-      f.compress(VectorOperation::insert);
-      return 0;
-    }
-    int setup_jacobian(double, const thermal::Vector &) override { return 0; }
-    int jacobian_vmult(const thermal::Vector &v, thermal::Vector &Jv) override
-    {
-      for (const auto i : owned)
-        Jv(i) = -k[i] * v(i);
-      Jv.compress(VectorOperation::insert);
-      return 0;
-    }
-    int setup_newton_matrix(const double g) override
-    {
-      gamma = g;
-      return 0;
-    }
-    int solve_newton_matrix(thermal::Vector &x, const thermal::Vector &b) override
-    {
-      for (const auto i : owned)
-        x(i) = b(i) / (m[i] + gamma * k[i]);
-      x.compress(VectorOperation::insert);
-      return 1;
-    }
-    bool newton_matrix_is_exact(const double g) const override { return g == gamma; }
-    bool can_solve_exactly() const override { return true; }
-    int  mass_vmult(const thermal::Vector &v, thermal::Vector &Mv) override
-    {
-      for (const auto i : owned)
-        Mv(i) = m[i] * v(i);
-      Mv.compress(VectorOperation::insert);
-      return 0;
-    }
-    int solve_mass(thermal::Vector &x, const thermal::Vector &b, double) override
-    {
-      for (const auto i : owned)
-        x(i) = b(i) / m[i];
-      x.compress(VectorOperation::insert);
-      return 0;
-    }
-  };
+  using Forced = anvil::testing::DiagonalHeatSystem;
 
   Forced make_system(const double rate)
   {
-    const unsigned int n_procs = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
-    const unsigned int rank    = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
-    const unsigned int n       = 4;
-    Forced             system;
-    system.owned.set_size(n);
-    for (unsigned int i = 0; i < n; ++i)
-      if (i % n_procs == rank)
-        system.owned.add_index(i);
-    system.owned.compress();
-    for (unsigned int i = 0; i < n; ++i)
-      {
-        system.m.push_back(1. + i);
-        system.k.push_back(rate * (1. + i) * (1. + 0.25 * i)); // rates k/m = rate (1 + i/4)
-      }
-    return system;
+    return Forced(rate, omega, /*exact*/ true);
   }
 
   /// max |y(t_end) − closed form| after @p calls calls of @p span each from
