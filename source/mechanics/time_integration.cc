@@ -9,6 +9,7 @@
 #include <anvil/core/scene.h>
 #include <anvil/contact/contact_problem.h>
 #include <anvil/mechanics/assembly_kernels.h>
+#include <anvil/mechanics/cell_scatter.h>
 #include <anvil/core/instantiate.h>
 #include <anvil/material/j2_plasticity.h>
 #include <anvil/mechanics/mechanical_problem.h>
@@ -22,20 +23,6 @@
 namespace anvil
 {
   using namespace dealii;
-
-  namespace
-  {
-    /// Whether this process holds the same elements of @p a and @p b in the same order.
-    bool same_local_layout(const TrilinosWrappers::MPI::Vector &a,
-                           const TrilinosWrappers::MPI::Vector &b)
-    {
-      const Epetra_BlockMap &p = a.trilinos_vector().Map(), &q = b.trilinos_vector().Map();
-      return p.DataPtr() == q.DataPtr() ||
-             (p.NumMyElements() == q.NumMyElements() &&
-              std::equal(p.MyGlobalElements(), p.MyGlobalElements() + p.NumMyElements(),
-                         q.MyGlobalElements()));
-    }
-  } // namespace
 
   template <int dim>
   void MechanicalProblem<dim>::setup_dynamics()
@@ -323,7 +310,7 @@ namespace anvil
     double energy = 0;
     // By the local arrays where v has mv's layout (one process): the same
     // values in the same order as v(i) and mv(i), without a look-up each.
-    if (same_local_layout(v, mv))
+    if (MechanicsAssembly::same_local_map(v.trilinos_vector().Map(), mv.trilinos_vector().Map()))
       {
         const double *const v_values = v.trilinos_vector()[0], *const mv_values = mv.begin();
         for (unsigned int k = 0; k < mv.locally_owned_size(); ++k)
