@@ -93,6 +93,8 @@ namespace anvil
     bool assemble_jacobian(double t, double dt, const Vector &u, const Vector &T,
                            const Vector &b_u, const Vector &f);
     void build_pattern();
+    void add_difference_blocks(double dt, const std::vector<Vector> &dR_u,
+                               const std::vector<Vector> &df_T, const std::vector<Vector> &df_u);
     unsigned int solve(const Vector &b_u, const Vector &b_T, Vector &du, Vector &dT);
     double       heat_residual(const Vector &T, const Vector &f, double dt, Vector &b_T) const;
     void         print_tangent_check(double t, double dt, const Vector &u, const Vector &T);

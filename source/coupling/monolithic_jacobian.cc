@@ -294,6 +294,20 @@ namespace anvil
     mech.set_displacement(u);
     heat.set_configuration(mech.get_dof_handler(), mech.displacement());
 
+    add_difference_blocks(dt, dR_u, df_T, df_u);
+    jacobian.compress(VectorOperation::add);
+    return true;
+  }
+
+  // The differenced blocks into the Jacobian, with the heat block (M + Δt A
+  // and the exchange's diagonal) copied in: the AMG preconditions with it.
+  template <int dim>
+  void Monolithic<dim>::add_difference_blocks(const double dt, const std::vector<Vector> &dR_u,
+                                              const std::vector<Vector> &df_T,
+                                              const std::vector<Vector> &df_u)
+  {
+    const auto &c_u = this->problem->mechanics()->update_constraints();
+    const auto &c_T = this->problem->heat()->get_constraints();
     // R_T = M (T − Tₙ) − Δt f: ∂R_T/∂x = −Δt ∂f/∂x.
     for (const auto &[i, columns] : T_to_T)
       if (!c_T.is_constrained(i))
@@ -314,8 +328,6 @@ namespace anvil
         for (const auto j : columns)
           if (!c_u.is_constrained(j))
             jacobian.add(n_u + i, j, -dt * df_u[colour_u[j]](i));
-    jacobian.compress(VectorOperation::add);
-    return true;
   }
 
   template <int dim>

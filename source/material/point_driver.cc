@@ -34,6 +34,31 @@ namespace anvil
     const MaterialRequest all_requests = request_stress | request_tangent |
                                          request_temperature_derivative | request_dissipation;
     constexpr unsigned int max_local_iterations = 50;
+
+    // Each header carries its unit ("sxx [MPa]"); readers match the name before " [".
+    std::vector<std::string> history_columns()
+    {
+      std::vector<std::string> columns = {"step", "time [s]", "temperature [K]"};
+      for (const auto *name : strain_names)
+        columns.emplace_back(std::string(name) + " [-]");
+      for (const auto *name : stress_names)
+        columns.emplace_back(std::string(name) + " [MPa]");
+      for (const auto *name :
+           {"von_mises [MPa]", "pressure [MPa]", "equivalent_plastic_strain [-]",
+            "plastic_work_rate [MPa/s]", "plastic_dissipation_rate [MPa/s]",
+            "thermoelastic_heating_rate [MPa/s]", "return_iterations", "local_iterations"})
+        columns.emplace_back(name);
+      return columns;
+    }
+
+    // A failure to create it shows when the file is opened, with the parameter's name.
+    void create_parent_directory(const std::string &name)
+    {
+      const std::filesystem::path parent = std::filesystem::path(name).parent_path();
+      std::error_code             ignored;
+      if (!parent.empty())
+        std::filesystem::create_directories(parent, ignored);
+    }
   } // namespace
 
 
@@ -266,24 +291,8 @@ namespace anvil
     CsvHistory csv;
     if (write)
       for (const auto &name : {file, summary})
-        {
-          const std::filesystem::path parent = std::filesystem::path(name).parent_path();
-          std::error_code             ignored;
-          if (!parent.empty())
-            std::filesystem::create_directories(parent, ignored);
-        }
-    // Each header carries its unit ("sxx [MPa]"); readers match the name before " [".
-    std::vector<std::string> columns = {"step", "time [s]", "temperature [K]"};
-    for (const auto *name : strain_names)
-      columns.emplace_back(std::string(name) + " [-]");
-    for (const auto *name : stress_names)
-      columns.emplace_back(std::string(name) + " [MPa]");
-    for (const auto *name : {"von_mises [MPa]", "pressure [MPa]", "equivalent_plastic_strain [-]",
-                             "plastic_work_rate [MPa/s]", "plastic_dissipation_rate [MPa/s]",
-                             "thermoelastic_heating_rate [MPa/s]", "return_iterations",
-                             "local_iterations"})
-      columns.emplace_back(name);
-    csv.open(file, columns, write);
+        create_parent_directory(name);
+    csv.open(file, history_columns(), write);
     if (write && !csv.is_open())
       scene.fail(path_file, "= '" + file + "' cannot be opened for writing");
 
