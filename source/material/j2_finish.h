@@ -21,7 +21,7 @@ namespace anvil
     {
       /// The tangent of the radial return, factored (FactoredTangent) when the
       /// caller asks for it, else as 36 + 36 entries (C and ∂σ/∂σ̃ₙ).
-      inline void write_tangent(const MaterialRequest request, const bool adiabatic,
+      [[gnu::always_inline]] inline void write_tangent(const MaterialRequest request, const bool adiabatic,
                                 const double K, const double G, const double H, const double dp,
                                 const double q_trial, const double *n, MaterialResponse &response)
       {

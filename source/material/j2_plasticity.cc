@@ -11,6 +11,8 @@
 #include "j2_tangent.h"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace anvil
 {
@@ -44,7 +46,15 @@ namespace anvil
       static constexpr unsigned int row[6] = {0, 1, 2, 0, 0, 1}, col[6] = {0, 1, 2, 1, 2, 2};
       Rotated             rotated;
       const double *sn = stress_n.begin_raw();
-      if (R[0][2] == 0 && R[1][2] == 0 && R[2][0] == 0 && R[2][1] == 0 && sn[4] == 0 && sn[5] == 0)
+      // All six ±0 (x == 0 for each), tested on the bits at once: one branch,
+      // not six compare-and-branch pairs (each x == 0 is also two jumps).
+      auto bits = [](const double x) {
+        std::uint64_t b;
+        std::memcpy(&b, &x, sizeof b);
+        return b;
+      };
+      if (((bits(R[0][2]) | bits(R[1][2]) | bits(R[2][0]) | bits(R[2][1]) | bits(sn[4]) | bits(sn[5]))
+           << 1) == 0)
         {
           // Plane strain and axisymmetric: ΔR and σₙ are [2x2 block, 0; 0, (2,2)].
           // The products below are the general ones' nonzero terms (the others
