@@ -90,13 +90,16 @@ namespace anvil
 
       // Radial return: σ = trial − √6 G Δε̄ n, n = s/|s|.
       // n enters only through Δε̄ > 0 terms (elastic: zero, as for |s| = 0).
-      double n[6] = {0, 0, 0, 0, 0, 0};
+      double n[6];
       if (dp > 0)
         {
           const double inv_norm = 1 / norm_s;
           for (unsigned int c = 0; c < 6; ++c)
             n[c] = s[c] * inv_norm;
         }
+      else
+        for (unsigned int c = 0; c < 6; ++c)
+          n[c] = 0;
       double *sigma = response.stress.begin_raw();
       if (dp > 0)
         {

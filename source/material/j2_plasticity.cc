@@ -85,7 +85,10 @@ namespace anvil
       return rotated;
     }
 
-    void J2Point::update(const MaterialIncrement &increment,
+    // No stack canary (-fstack-protector-strong puts one in every function
+    // with a local array): the arrays here are doubles indexed by constants,
+    // and the check was 7 of ~520 instructions per update.
+    [[gnu::no_stack_protector]] void J2Point::update(const MaterialIncrement &increment,
                          const MaterialRequest    request,
                          MaterialResponse        &response)
     {
@@ -195,6 +198,9 @@ namespace anvil
         return;
       kernel_cache.linear       = hardening->is_linear();
       kernel_cache.inline_yield = hardening->linear_form(kernel_cache.yield);
+      const HardeningLaw::LinearForm &y = kernel_cache.yield;
+      kernel_cache.plain_yield =
+        kernel_cache.inline_yield && !(y.theta_linear && (y.soft_sigma0 || y.soft_h));
     });
   }
 

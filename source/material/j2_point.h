@@ -109,6 +109,15 @@ namespace anvil
       HardeningLaw::Value yield(const double eps, const double T) const
       {
         const J2Model::Kernel &k = model.kernel();
+        if (k.plain_yield)
+          {
+            // LinearForm::evaluate() at θ = 1, dθ/dT = 0 (1 x is x): the same bits.
+            HardeningLaw::Value v;
+            v.stress                 = k.yield.sigma0 + k.yield.h * eps;
+            v.slope                  = k.yield.h;
+            v.temperature_derivative = 0. * k.yield.sigma0 + 0. * k.yield.h * eps;
+            return v;
+          }
         return k.inline_yield ? k.yield.evaluate(eps, T) : model.hardening->evaluate(eps, T);
       }
       /// σ̃ₙ (shears symmetrised) and Δε of this update, for the audit's
