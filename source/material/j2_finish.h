@@ -80,7 +80,7 @@ namespace anvil
       const ElasticLaw &el = model.elastic;
       const double      T = t.T, K = t.K, G = t.G, beta = t.beta, deth = t.deth;
       const double      dp = t.dp, H = t.H, norm_s = t.norm_s, q_trial = t.q_trial, tr_de = t.tr_de;
-      const double     *trial = t.trial, *de = t.de, *s = t.s;
+      const double     *trial = t.trial, *s = t.s;
       HardeningLaw::Value &Y = t.Y;
       PerzynaLaw::Value   &V = t.V;
       const HardeningLaw::Value &Y_start = t.Y_start;
@@ -125,6 +125,8 @@ namespace anvil
           const double          g = el.relative_modulus_derivative(T);
           SymmetricTensor<2, 3> dtrial;
           {
+            double de[6];
+            elastic_strain_increment(inc, t, de);
             const double k_tr = K * tr_de, two_G = 2 * G, th = 3 * K * deth;
             const double mean = (de[0] + de[1] + de[2]) / 3; // deviator(): trace / dim
             double      *d    = dtrial.begin_raw();
@@ -184,6 +186,8 @@ namespace anvil
           if (dp > 0)
             {
               // ∂q_tr/∂T = √(3/2) n : ∂σ_tr/∂T = √(3/2) 2G' n : Δεᵉ (n deviatoric).
+              double de[6];
+              elastic_strain_increment(inc, t, de);
               double n_de = 0;
               for (unsigned int c = 0; c < 6; ++c)
                 n_de += (c < 3 ? 1. : 2.) * n[c] * de[c];

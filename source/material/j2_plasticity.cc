@@ -198,6 +198,8 @@ namespace anvil
         return;
       kernel_cache.linear       = hardening->is_linear();
       kernel_cache.inline_yield = hardening->linear_form(kernel_cache.yield);
+      kernel_cache.closed_form =
+        kernel_cache.linear && !viscosity.active() && !johnson_cook_rate.active();
       const HardeningLaw::LinearForm &y = kernel_cache.yield;
       kernel_cache.plain_yield =
         kernel_cache.inline_yield && !(y.theta_linear && (y.soft_sigma0 || y.soft_h));
