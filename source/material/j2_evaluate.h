@@ -38,7 +38,7 @@ namespace anvil
 
       // Trial state: rotated σ_n plus H(T) : (Δε − βΔT I), eq. (9), (10), (19),
       // on the raw components (00, 11, 22, 01, 02, 12).
-      double *trial = t.trial, *de = t.de, *s = t.s;
+      double *trial = t.trial, *s = t.s, de[6];
       const double *dstrain = inc.strain_increment.begin_raw();
       for (unsigned int c = 0; c < 6; ++c)
         de[c] = dstrain[c] - (c < 3 ? eth : 0.);
@@ -85,7 +85,8 @@ namespace anvil
                 rate = model.viscosity.at(T, inc.time_step);
               else
                 rate.dt = inc.time_step;
-              if (model.kernel().linear && !rate.active() && !model.johnson_cook_rate.active())
+              const J2Model::Kernel &k = model.kernel();
+              if (k.closed_form || (k.linear && !rate.active() && !model.johnson_cook_rate.active()))
                 {
                   // Linear hardening, rate-independent: r is linear in Δε̄.
                   const double h = Y_start.slope;

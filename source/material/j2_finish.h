@@ -21,7 +21,7 @@ namespace anvil
     {
       /// The tangent of the radial return, factored (FactoredTangent) when the
       /// caller asks for it, else as 36 + 36 entries (C and ∂σ/∂σ̃ₙ).
-      inline void write_tangent(const MaterialRequest request, const bool adiabatic,
+      [[gnu::always_inline]] inline void write_tangent(const MaterialRequest request, const bool adiabatic,
                                 const double K, const double G, const double H, const double dp,
                                 const double q_trial, const double *n, MaterialResponse &response)
       {
@@ -80,7 +80,7 @@ namespace anvil
       const ElasticLaw &el = model.elastic;
       const double      T = t.T, K = t.K, G = t.G, beta = t.beta, deth = t.deth;
       const double      dp = t.dp, H = t.H, norm_s = t.norm_s, q_trial = t.q_trial, tr_de = t.tr_de;
-      const double     *trial = t.trial, *de = t.de, *s = t.s;
+      const double     *trial = t.trial, *s = t.s;
       HardeningLaw::Value &Y = t.Y;
       PerzynaLaw::Value   &V = t.V;
       const HardeningLaw::Value &Y_start = t.Y_start;
@@ -90,13 +90,16 @@ namespace anvil
 
       // Radial return: σ = trial − √6 G Δε̄ n, n = s/|s|.
       // n enters only through Δε̄ > 0 terms (elastic: zero, as for |s| = 0).
-      double n[6] = {0, 0, 0, 0, 0, 0};
+      double n[6];
       if (dp > 0)
         {
           const double inv_norm = 1 / norm_s;
           for (unsigned int c = 0; c < 6; ++c)
             n[c] = s[c] * inv_norm;
         }
+      else
+        for (unsigned int c = 0; c < 6; ++c)
+          n[c] = 0;
       double *sigma = response.stress.begin_raw();
       if (dp > 0)
         {
@@ -122,6 +125,8 @@ namespace anvil
           const double          g = el.relative_modulus_derivative(T);
           SymmetricTensor<2, 3> dtrial;
           {
+            double de[6];
+            elastic_strain_increment(inc, t, de);
             const double k_tr = K * tr_de, two_G = 2 * G, th = 3 * K * deth;
             const double mean = (de[0] + de[1] + de[2]) / 3; // deviator(): trace / dim
             double      *d    = dtrial.begin_raw();
@@ -181,6 +186,8 @@ namespace anvil
           if (dp > 0)
             {
               // ∂q_tr/∂T = √(3/2) n : ∂σ_tr/∂T = √(3/2) 2G' n : Δεᵉ (n deviatoric).
+              double de[6];
+              elastic_strain_increment(inc, t, de);
               double n_de = 0;
               for (unsigned int c = 0; c < 6; ++c)
                 n_de += (c < 3 ? 1. : 2.) * n[c] * de[c];

@@ -11,6 +11,8 @@
 #include "j2_tangent.h"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace anvil
 {
@@ -44,7 +46,15 @@ namespace anvil
       static constexpr unsigned int row[6] = {0, 1, 2, 0, 0, 1}, col[6] = {0, 1, 2, 1, 2, 2};
       Rotated             rotated;
       const double *sn = stress_n.begin_raw();
-      if (R[0][2] == 0 && R[1][2] == 0 && R[2][0] == 0 && R[2][1] == 0 && sn[4] == 0 && sn[5] == 0)
+      // All six ±0 (x == 0 for each), tested on the bits at once: one branch,
+      // not six compare-and-branch pairs (each x == 0 is also two jumps).
+      auto bits = [](const double x) {
+        std::uint64_t b;
+        std::memcpy(&b, &x, sizeof b);
+        return b;
+      };
+      if (((bits(R[0][2]) | bits(R[1][2]) | bits(R[2][0]) | bits(R[2][1]) | bits(sn[4]) | bits(sn[5]))
+           << 1) == 0)
         {
           // Plane strain and axisymmetric: ΔR and σₙ are [2x2 block, 0; 0, (2,2)].
           // The products below are the general ones' nonzero terms (the others
@@ -75,7 +85,10 @@ namespace anvil
       return rotated;
     }
 
-    void J2Point::update(const MaterialIncrement &increment,
+    // No stack canary (-fstack-protector-strong puts one in every function
+    // with a local array): the arrays here are doubles indexed by constants,
+    // and the check was 7 of ~520 instructions per update.
+    [[gnu::no_stack_protector]] void J2Point::update(const MaterialIncrement &increment,
                          const MaterialRequest    request,
                          MaterialResponse        &response)
     {
@@ -185,6 +198,11 @@ namespace anvil
         return;
       kernel_cache.linear       = hardening->is_linear();
       kernel_cache.inline_yield = hardening->linear_form(kernel_cache.yield);
+      kernel_cache.closed_form =
+        kernel_cache.linear && !viscosity.active() && !johnson_cook_rate.active();
+      const HardeningLaw::LinearForm &y = kernel_cache.yield;
+      kernel_cache.plain_yield =
+        kernel_cache.inline_yield && !(y.theta_linear && (y.soft_sigma0 || y.soft_h));
     });
   }
 

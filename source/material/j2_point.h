@@ -89,7 +89,7 @@ namespace anvil
       {
         // (Every number is set by evaluate(), none is read before.)
         double T, dT, K, G, eth, deth, beta;
-        double trial[6], de[6], s[6];
+        double trial[6], s[6]; // (Δεᵉ: elastic_strain_increment(), where needed)
         double tr_de, norm_s, q_trial, dp, H;
         HardeningLaw::Value Y, Y_start;
         PerzynaLaw::Value   V;
@@ -99,6 +99,14 @@ namespace anvil
         double              work, dwork_dq, tr_rev, rho_c;
         double              adiabatic_temperature_increment;
       };
+      /// Δεᵉ = Δε − Δε_th I of @p t, as evaluate() forms it (recomputed
+      /// where ∂/∂T needs it: six stores fewer per update).
+      static void elastic_strain_increment(const MaterialIncrement &inc, const Trial &t, double *de)
+      {
+        const double *dstrain = inc.strain_increment.begin_raw();
+        for (unsigned int c = 0; c < 6; ++c)
+          de[c] = dstrain[c] - (c < 3 ? t.eth : 0.);
+      }
       /// Trial state, yield test, return map and heat sources at (T, ΔT).
       void evaluate(const MaterialIncrement &inc, double T, double dT, const Rotated &rotated,
                     Trial &t) const;
@@ -109,6 +117,15 @@ namespace anvil
       HardeningLaw::Value yield(const double eps, const double T) const
       {
         const J2Model::Kernel &k = model.kernel();
+        if (k.plain_yield)
+          {
+            // LinearForm::evaluate() at θ = 1, dθ/dT = 0 (1 x is x): the same bits.
+            HardeningLaw::Value v;
+            v.stress                 = k.yield.sigma0 + k.yield.h * eps;
+            v.slope                  = k.yield.h;
+            v.temperature_derivative = 0. * k.yield.sigma0 + 0. * k.yield.h * eps;
+            return v;
+          }
         return k.inline_yield ? k.yield.evaluate(eps, T) : model.hardening->evaluate(eps, T);
       }
       /// σ̃ₙ (shears symmetrised) and Δε of this update, for the audit's

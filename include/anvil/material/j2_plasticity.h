@@ -151,6 +151,12 @@ namespace anvil
       bool                     inline_yield = false; // yield below, else hardening->evaluate()
       HardeningLaw::LinearForm yield;
       bool                     linear = false; // hardening->is_linear()
+      /// The inline law without softening of either parameter (θ = 1):
+      /// σᵥ = σ₀ + h ε̄, no branch on the flags at every update.
+      bool plain_yield = false;
+      /// linear without viscosity or Johnson-Cook rate: the return map in
+      /// closed form at every plastic update (one test, not three).
+      bool closed_form = false;
     };
     /// Valid once a point exists (create_point(s) prepares it).
     const Kernel &kernel() const { return kernel_cache; }
