@@ -92,6 +92,9 @@ namespace anvil
           AssertThrow(ierr >= 0, ExcMessage("make_serial_matrix: Epetra InsertMyIndices " +
                                             std::to_string(ierr)));
         }
+    // The graph holds its copy: the rows' arrays go before the values come.
+    std::vector<int>().swap(columns);
+    std::vector<std::vector<int>>().swap(extra);
     graph.declare_sorted();
     graph.FillComplete(map, map);
     graph.OptimizeStorage();
