@@ -5,6 +5,7 @@
 // Session 16 measured ~560 M instructions per process on the contact strip
 // for building the whole mesh, partitioning and describing it.
 #include <deal.II/base/mpi.h>
+#include <deal.II/distributed/fully_distributed_tria.h>
 #include <deal.II/grid/cell_id.h>
 
 #include <anvil/core/instantiate.h>
@@ -87,9 +88,34 @@ namespace anvil
     return description;
   }
 
+  template <int dim>
+  void create_per_body(const MeshArrays<dim> &mesh, parallel::fullydistributed::Triangulation<dim> &tria)
+  {
+    // deal.II 9.4 sorts the description's cells twice (fully distributed and
+    // serial create_triangulation) with a comparison that takes them by
+    // value: every comparison copied two vectors of boundary ids (most cells
+    // of a strip two cells thick have a boundary face). Without them the
+    // copies allocate nothing; the ids are set on the faces afterwards, where
+    // the description would have set them (boundary faces of the cells it
+    // lists; the artificial boundary keeps deal.II's 0 either way).
+    auto description = describe_per_body(mesh, tria.get_communicator());
+    for (auto &info : description.cell_infos[0])
+      info.boundary_ids.clear();
+    tria.create_triangulation(description);
+    for (const auto &cell : tria.cell_iterators_on_level(0))
+      {
+        const auto &faces = mesh.face_ids[cell->id().get_coarse_cell_id()];
+        for (unsigned int f = 0; f < GeometryInfo<dim>::faces_per_cell; ++f)
+          if (faces[f] != numbers::internal_face_boundary_id)
+            cell->face(f)->set_boundary_id(faces[f]);
+      }
+  }
+
 #define INSTANTIATE(dim)                                                                           \
   template TriangulationDescription::Description<dim, dim> describe_per_body(                      \
-    const MeshArrays<dim> &, MPI_Comm);
+    const MeshArrays<dim> &, MPI_Comm);                                                            \
+  template void create_per_body(const MeshArrays<dim> &,                                          \
+                                parallel::fullydistributed::Triangulation<dim> &);
   ANVIL_INSTANTIATE(INSTANTIATE)
 #undef INSTANTIATE
 } // namespace anvil

@@ -90,7 +90,7 @@ namespace anvil
               for (unsigned int d = 0; d < dim; ++d)
                 p[d] = transformation[d]->value(x);
             }
-        triangulation.create_triangulation(describe_per_body(mesh, triangulation.get_communicator()));
+        create_per_body(mesh, dynamic_cast<parallel::fullydistributed::Triangulation<dim> &>(triangulation));
       }
     else
       {

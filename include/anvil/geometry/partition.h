@@ -40,6 +40,12 @@ namespace anvil
   dealii::TriangulationDescription::Description<dim, dim>
   describe_per_body(const MeshArrays<dim> &mesh, MPI_Comm comm);
 
+  /// Build @p triangulation from describe_per_body() (the boundary ids set
+  /// after creation: per_body_description.cc says why).
+  template <int dim>
+  void create_per_body(const MeshArrays<dim>                                  &mesh,
+                       dealii::parallel::fullydistributed::Triangulation<dim> &triangulation);
+
   /**
    * Geometry/Partition = per body (issue 15). p4est numbers the coarse cells of
    * each connected component consecutively, so with two bodies on two processes
