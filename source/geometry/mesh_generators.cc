@@ -10,6 +10,7 @@
 
 #include <anvil/core/instantiate.h>
 #include <anvil/geometry/geometry.h>
+#include <anvil/geometry/mesh_arrays.h>
 
 #include <cmath>
 
@@ -43,48 +44,25 @@ namespace anvil
     /*
      * Boxes into one coarse mesh. GridGenerator::merge_triangulations would
      * merge coincident vertices and so glue touching blocks together; blocks
-     * are separate bodies (possibly in contact), so we concatenate the vertex
-     * and cell lists ourselves, which keeps every block's vertices distinct.
-     * Cell material id = box index; boundary id of face k of box b = 2*dim*b + k.
-     * Box is Geometry<dim>::Block (lower, upper, subdivisions).
+     * are separate bodies (possibly in contact), so their vertex and cell
+     * lists are concatenated (mesh_arrays.cc), which keeps every block's
+     * vertices distinct. Cell material id = box index; boundary id of face k
+     * of box b = 2*dim*b + k. Box is Geometry<dim>::Block (lower, upper,
+     * subdivisions).
      */
+    template <int dim, typename Box>
+    MeshArrays<dim> box_arrays(const std::vector<Box> &boxes)
+    {
+      MeshArrays<dim> mesh;
+      for (unsigned int b = 0; b < boxes.size(); ++b)
+        append_box(mesh, boxes[b].lower, boxes[b].upper, boxes[b].subdivisions, b, 2 * dim * b);
+      return mesh;
+    }
+
     template <int dim, typename Box>
     void build_boxes(Triangulation<dim> &tria, const std::vector<Box> &boxes)
     {
-      std::vector<Point<dim>>    vertices;
-      std::vector<CellData<dim>> cells;
-      for (unsigned int b = 0; b < boxes.size(); ++b)
-        {
-          Triangulation<dim> piece;
-          GridGenerator::subdivided_hyper_rectangle(piece, boxes[b].subdivisions,
-                                                    boxes[b].lower, boxes[b].upper);
-          const unsigned int offset = vertices.size();
-          vertices.insert(vertices.end(), piece.get_vertices().begin(), piece.get_vertices().end());
-          for (const auto &cell : piece.active_cell_iterators())
-            {
-              CellData<dim> data;
-              for (const unsigned int v : cell->vertex_indices())
-                data.vertices[v] = offset + cell->vertex_index(v);
-              data.material_id = b;
-              cells.push_back(data);
-            }
-        }
-      tria.create_triangulation(vertices, cells, SubCellData());
-
-      // A boundary face of a block cell lies in exactly one plane of its box.
-      label_boundary(tria, [&](const auto &cell, const auto &face) {
-        const unsigned int b   = cell->material_id();
-        const Box         &box = boxes[b];
-        const double       tol = 1e-10 * box.lower.distance(box.upper);
-        for (unsigned int k = 0; k < 2 * dim; ++k)
-          {
-            const double plane = k % 2 == 0 ? box.lower[k / 2] : box.upper[k / 2];
-            if (all_vertices(face, [&](const Point<dim> &p) { return std::abs(p[k / 2] - plane) < tol; }))
-              return 2 * dim * b + k;
-          }
-        Assert(false, ExcInternalError());
-        return 0u;
-      });
+      box_arrays<dim>(boxes).create_triangulation(tria);
     }
 
     // The axisymmetric section r in [r0, r1] (x), z in [0, length] (y) of tube and bar.

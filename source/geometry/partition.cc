@@ -27,67 +27,68 @@ namespace anvil
   } // namespace
 
   template <int dim>
-  std::vector<unsigned int> partition_per_body(Triangulation<dim> &serial, const unsigned int n_parts)
+  PerBodyCut cut_per_body(const std::vector<CellData<dim>> &cells, const std::vector<Point<dim>> &centers,
+                          const unsigned int n_vertices, const unsigned int n_parts)
   {
-    // Union-find over (body, vertex): the cells of one body share vertices.
-    // Blocks that touch may share vertices too (merged meshes), so a body is
-    // also one material id.
-    std::map<std::pair<types::material_id, unsigned int>, unsigned int> node_of;
-    const auto node = [&](const auto &cell, const unsigned int v) {
-      return node_of.emplace(std::make_pair(cell->material_id(), cell->vertex_index(v)), node_of.size())
-        .first->second;
-    };
-    for (const auto &cell : serial.active_cell_iterators())
-      for (const unsigned int v : cell->vertex_indices())
-        node(cell, v);
-    std::vector<unsigned int> parent(node_of.size());
+    // Union-find over the cells: cells of one material that share a vertex
+    // are one body. Blocks that touch may share vertices too (merged meshes),
+    // so a vertex joins only cells of one material; the few vertices shared
+    // by several materials are looked up by (vertex, material).
+    const unsigned int        n = cells.size();
+    std::vector<unsigned int> parent(n), first(n_vertices, numbers::invalid_unsigned_int);
     std::iota(parent.begin(), parent.end(), 0u);
-    for (const auto &cell : serial.active_cell_iterators())
-      for (const unsigned int v : cell->vertex_indices())
+    std::map<std::pair<unsigned int, types::material_id>, unsigned int> shared;
+    const auto join = [&](const unsigned int a, const unsigned int b) {
+      const unsigned int ra = find_root(parent, a), rb = find_root(parent, b);
+      if (ra != rb)
+        parent[std::max(ra, rb)] = std::min(ra, rb);
+    };
+    for (unsigned int c = 0; c < n; ++c)
+      for (const unsigned int v : cells[c].vertices)
         {
-          const unsigned int a = find_root(parent, node(cell, 0));
-          const unsigned int b = find_root(parent, node(cell, v));
-          if (a != b)
-            parent[std::max(a, b)] = std::min(a, b);
+          unsigned int &f = first[v];
+          if (f == numbers::invalid_unsigned_int)
+            f = c;
+          else if (cells[f].material_id == cells[c].material_id)
+            join(f, c);
+          else
+            join(shared.emplace(std::make_pair(v, cells[c].material_id), c).first->second, c);
         }
 
-    std::vector<unsigned int>              component(serial.n_active_cells());
-    std::vector<std::vector<Point<dim>>>   centers; // per component, by cell
-    std::vector<std::vector<unsigned int>> cells;   // active indices per component
-    std::vector<unsigned int> root_to_component(parent.size(), numbers::invalid_unsigned_int);
-    for (const auto &cell : serial.active_cell_iterators())
+    PerBodyCut                             cut;
+    std::vector<std::vector<unsigned int>> members; // cells per component, in order
+    std::vector<unsigned int> root_to_component(n, numbers::invalid_unsigned_int);
+    cut.component.resize(n);
+    for (unsigned int c = 0; c < n; ++c)
       {
-        unsigned int &c = root_to_component[find_root(parent, node(cell, 0))];
-        if (c == numbers::invalid_unsigned_int)
+        unsigned int &k = root_to_component[find_root(parent, c)];
+        if (k == numbers::invalid_unsigned_int)
           {
-            c = cells.size();
-            cells.emplace_back();
-            centers.emplace_back();
+            k = members.size();
+            members.emplace_back();
           }
-        component[cell->active_cell_index()] = c;
-        cells[c].push_back(cell->active_cell_index());
-        centers[c].push_back(cell->center());
+        cut.component[c] = k;
+        members[k].push_back(c);
       }
 
-    std::vector<types::subdomain_id> owner(serial.n_active_cells());
-    for (unsigned int c = 0; c < cells.size(); ++c)
+    cut.owner.resize(n);
+    for (const auto &body : members)
       {
         // Slabs across the longest axis of the body's bounding box: the cut
         // is then as short as the body is thin (a strip is cut across).
-        Point<dim> lower = centers[c][0], upper = centers[c][0];
-        for (const auto &p : centers[c])
+        Point<dim> lower = centers[body[0]], upper = centers[body[0]];
+        for (const unsigned int c : body)
           for (unsigned int d = 0; d < dim; ++d)
-            lower[d] = std::min(lower[d], p[d]), upper[d] = std::max(upper[d], p[d]);
+            lower[d] = std::min(lower[d], centers[c][d]), upper[d] = std::max(upper[d], centers[c][d]);
         unsigned int axis = 0;
         for (unsigned int d = 1; d < dim; ++d)
           if (upper[d] - lower[d] > upper[axis] - lower[axis])
             axis = d;
-        std::vector<unsigned int> order(cells[c].size());
-        std::iota(order.begin(), order.end(), 0u);
+        std::vector<unsigned int> order(body);
         // Ties (cells in one layer) by the other coordinates, so the slabs are
         // the same whatever the cell numbering.
         std::stable_sort(order.begin(), order.end(), [&](const unsigned int a, const unsigned int b) {
-          const Point<dim> &p = centers[c][a], &q = centers[c][b];
+          const Point<dim> &p = centers[a], &q = centers[b];
           if (p[axis] != q[axis])
             return p[axis] < q[axis];
           for (unsigned int d = 0; d < dim; ++d)
@@ -95,13 +96,30 @@ namespace anvil
               return p[d] < q[d];
           return false;
         });
-        const std::size_t n = order.size();
-        for (std::size_t k = 0; k < n; ++k)
-          owner[cells[c][order[k]]] = static_cast<types::subdomain_id>(k * n_parts / n);
+        const std::size_t m = order.size();
+        for (std::size_t k = 0; k < m; ++k)
+          cut.owner[order[k]] = static_cast<types::subdomain_id>(k * n_parts / m);
       }
+    return cut;
+  }
+
+  template <int dim>
+  std::vector<unsigned int> partition_per_body(Triangulation<dim> &serial, const unsigned int n_parts)
+  {
+    std::vector<CellData<dim>> cells(serial.n_active_cells());
+    std::vector<Point<dim>>    centers(serial.n_active_cells());
     for (const auto &cell : serial.active_cell_iterators())
-      cell->set_subdomain_id(owner[cell->active_cell_index()]);
-    return component;
+      {
+        auto &data = cells[cell->active_cell_index()];
+        for (const unsigned int v : cell->vertex_indices())
+          data.vertices[v] = cell->vertex_index(v);
+        data.material_id                      = cell->material_id();
+        centers[cell->active_cell_index()]    = cell->center();
+      }
+    const PerBodyCut cut = cut_per_body(cells, centers, serial.n_vertices(), n_parts);
+    for (const auto &cell : serial.active_cell_iterators())
+      cell->set_subdomain_id(cut.owner[cell->active_cell_index()]);
+    return cut.component;
   }
 
   template <int dim>
@@ -148,6 +166,8 @@ namespace anvil
 
 #define INSTANTIATE(dim)                                                                           \
   template std::vector<unsigned int> partition_per_body(Triangulation<dim> &, unsigned int);     \
+  template PerBodyCut cut_per_body(const std::vector<CellData<dim>> &,                           \
+                                   const std::vector<Point<dim>> &, unsigned int, unsigned int); \
   template void create_per_body(Triangulation<dim> &,                                            \
                                 parallel::fullydistributed::Triangulation<dim> &);        \
   template class PerBodyTriangulation<dim>;

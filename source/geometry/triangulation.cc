@@ -1,6 +1,8 @@
 // The distributed triangulation of either kind (Geometry/Partition): p4est's
 // from the coarse mesh, refined in parallel; or per body, a fully distributed
-// one cut from the whole refined mesh (partition.cc) — created and reloaded.
+// one cut from the whole refined mesh (partition.cc), or for unrefined blocks
+// described from the generator's arrays (per_body_description.cc) — created
+// and reloaded.
 #include <deal.II/distributed/fully_distributed_tria.h>
 #include <deal.II/distributed/tria.h>
 #include <deal.II/grid/grid_tools.h>
@@ -9,6 +11,7 @@
 #include <anvil/core/expression.h>
 #include <anvil/core/instantiate.h>
 #include <anvil/geometry/geometry.h>
+#include <anvil/geometry/mesh_arrays.h>
 #include <anvil/geometry/partition.h>
 
 namespace anvil
@@ -72,6 +75,23 @@ namespace anvil
         triangulation.refine_global(global_refinements);
         transform(triangulation);
       }
+    else if (type == "blocks" && global_refinements == 0 && random_distortion == 0)
+      {
+        // Per body, one level of flat blocks: each process describes its
+        // part from the generator's arrays (per_body_description.cc).
+        MeshArrays<dim> mesh;
+        for (unsigned int b = 0; b < blocks.size(); ++b) // as create_blocks() numbers them
+          append_box(mesh, blocks[b].lower, blocks[b].upper, blocks[b].subdivisions, b, 2 * dim * b);
+        check_size(mesh.cells.size());
+        if (!transformation.empty()) // as transform() maps every vertex
+          for (auto &p : mesh.vertices)
+            {
+              const Point<dim> x = p;
+              for (unsigned int d = 0; d < dim; ++d)
+                p[d] = transformation[d]->value(x);
+            }
+        create_per_body(mesh, dynamic_cast<parallel::fullydistributed::Triangulation<dim> &>(triangulation));
+      }
     else
       {
         // Per body: the whole refined (and transformed) mesh on every
@@ -105,9 +125,12 @@ namespace anvil
         // A fully distributed triangulation saves its cells with their
         // (transformed) vertices; only the manifold objects are set again.
         triangulation.load(file);
-        Triangulation<dim> serial;
-        create_serial_coarse(serial);
-        copy_manifolds(serial, triangulation);
+        if (type != "blocks" && type != "gmsh") // the others' curved parts
+          {
+            Triangulation<dim> serial;
+            create_serial_coarse(serial);
+            copy_manifolds(serial, triangulation);
+          }
       }
     throw_recorded_input_error(triangulation.get_communicator());
     check_cells(triangulation);

@@ -2,12 +2,50 @@
 
 #include <deal.II/distributed/fully_distributed_tria.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/grid/tria_description.h>
+
+#include <anvil/geometry/mesh_arrays.h>
 
 #include <string>
 #include <vector>
 
 namespace anvil
 {
+  /// The cut of a mesh's cells into bodies and slabs (cut_per_body()).
+  struct PerBodyCut
+  {
+    std::vector<dealii::types::subdomain_id> owner;     // process of every cell
+    std::vector<unsigned int>                component; // body (connected component) of every cell
+  };
+
+  /**
+   * The partition of partition_per_body() for cells given by their vertex
+   * indices (into @p n_vertices vertices), material ids and centres.
+   */
+  template <int dim>
+  PerBodyCut cut_per_body(const std::vector<dealii::CellData<dim>> &cells,
+                          const std::vector<dealii::Point<dim>>    &centers,
+                          unsigned int                              n_vertices,
+                          unsigned int                              n_parts);
+
+  /**
+   * This process's part of the one-level mesh @p mesh cut per body over the
+   * processes of @p comm: the cells it owns and every cell that shares a
+   * vertex with them, numbered as deal.II's
+   * TriangulationDescription::Utilities::create_description_from_triangulation()
+   * numbers them from the whole Triangulation (the same description, entry for
+   * entry: tests/mesh_arrays.cc), without a Triangulation of the whole mesh.
+   */
+  template <int dim>
+  dealii::TriangulationDescription::Description<dim, dim>
+  describe_per_body(const MeshArrays<dim> &mesh, MPI_Comm comm);
+
+  /// Build @p triangulation from describe_per_body() (the boundary ids set
+  /// after creation: per_body_description.cc says why).
+  template <int dim>
+  void create_per_body(const MeshArrays<dim>                                  &mesh,
+                       dealii::parallel::fullydistributed::Triangulation<dim> &triangulation);
+
   /**
    * Geometry/Partition = per body (issue 15). p4est numbers the coarse cells of
    * each connected component consecutively, so with two bodies on two processes
