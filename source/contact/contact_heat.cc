@@ -223,6 +223,8 @@ namespace anvil
       return node_thermal_owned[n] && !is_constrained(node_thermal_dof[n]);
     };
     HeatExchange e;
+    // Only a tool's temperature depends on t (the rest is held over the step).
+    e.rhs_depends_on_time = !tools.empty();
     e.add_rhs = [this, writable](const double t, const Vector &T, Vector &f) {
       const auto Tn = gather_node_values(T);
       for (const auto &h : heat_elements)

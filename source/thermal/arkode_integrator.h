@@ -25,6 +25,9 @@ namespace anvil
       virtual ~ImplicitSystem() = default;
       virtual void reinit_vector(Vector &v) const = 0;
       virtual int  rhs(double t, const Vector &y, Vector &f) = 0;
+      /// Whether rhs(t, y) is the same for every t of the current call (the
+      /// linear DIRK loop then evaluates f(·, y) once per step, not per stage).
+      virtual bool rhs_independent_of_time() const { return false; }
       /// Assemble J = ∂f/∂y at (t, y).
       virtual int  setup_jacobian(double t, const Vector &y) = 0;
       virtual int  jacobian_vmult(const Vector &v, Vector &Jv) = 0;

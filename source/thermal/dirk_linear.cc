@@ -86,10 +86,16 @@ namespace anvil
         const bool            explicit_first;
         double                setup_gamma = -1; // γ of the factorisation
         bool                  have_f0     = false;
+        // f(t, y) of this attempt where f does not depend on t: every stage's
+        // γ f(tᵢ, y) from it (the same evaluation, the same bits), one
+        // evaluation per step instead of one per stage.
+        const bool            time_independent = system.rhs_independent_of_time();
+        Vector                f_y;
 
         /// 0: done; > 0: recoverable (a shorter step); < 0: not.
         int solve(const Vector &y, const double t, const double t_new, const double h)
         {
+          bool have_fy = false;
           for (unsigned int i = 0; i < table.stages(); ++i)
             {
               int          status = 0;
@@ -115,10 +121,21 @@ namespace anvil
                     return status;
                   setup_gamma = gamma;
                 }
-              ++stats.rhs_evaluations;
-              status = guarded(message, [&] { return system.rhs(t_i, y, b); });
-              if (status != 0)
-                return status;
+              const Vector *known = !time_independent ? nullptr : explicit_first ? &f[0] : have_fy ? &f_y : nullptr;
+              if (known)
+                b = *known;
+              else
+                {
+                  ++stats.rhs_evaluations;
+                  status = guarded(message, [&] { return system.rhs(t_i, y, b); });
+                  if (status != 0)
+                    return status;
+                  if (time_independent)
+                    {
+                      f_y     = b;
+                      have_fy = true;
+                    }
+                }
               b *= gamma;
               for (unsigned int j = 0; j < i; ++j)
                 if (table.A[i][j] != 0.)

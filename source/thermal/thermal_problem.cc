@@ -66,6 +66,14 @@ namespace anvil
       p.assemble(t, y, &f, nullptr);
       return 0;
     }
+    bool rhs_independent_of_time() const override
+    {
+      // What linear_residual() evaluates at t: fluxes and T∞(t), ġ_D(t), a
+      // tool's temperature; the full assembly (an expression source) too.
+      return p.linear && !p.convection_varies && !p.source_function &&
+             !(p.has_dirichlet && p.has_hanging) && !p.loads_vary && !p.dirichlet_varies &&
+             (!p.exchange.add_rhs || !p.exchange.rhs_depends_on_time);
+    }
     int setup_jacobian(const double t, const Vector &y) override
     {
       // Linear problems on a frozen geometry: the Jacobian −K is assembled

@@ -26,6 +26,8 @@ namespace anvil
     using Adder = std::function<void(Index row, Index column, double value)>;
 
     std::function<void(double t, const Vector &T, Vector &f)> add_rhs;      // f += q(T)
+    /// Whether add_rhs depends on t (a tool's temperature T_tool(t)).
+    bool rhs_depends_on_time = true;
     std::function<void(const Vector &v, Vector &Jv)>          add_jacobian; // Jv += ∂q/∂T v
     std::function<void(const Adder &add)>                     add_matrix;   // ∂q/∂T, entry by entry
     /// Groups of temperature dofs that may couple (each group all-to-all),
