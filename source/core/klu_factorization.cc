@@ -72,7 +72,12 @@ namespace anvil
   struct KluFactorization::Direct
   {
     Direct() { trilinos_klu_defaults(&common); }
-    ~Direct() { free(); }
+    ~Direct()
+    {
+      free();
+      for (auto &a : analyses)
+        trilinos_klu_free_symbolic(&a.symbolic, &common);
+    }
     void free()
     {
       if (numeric)
@@ -95,6 +100,51 @@ namespace anvil
     double estimated_entries = -1;
     /// The band's estimated multiply-adds when KLU's estimate was made.
     double band_work_at_estimate = -1;
+
+    /// Analyses of earlier patterns, the latest first (contact patterns
+    /// recur: a node leaves a face and comes back). KLU's analysis depends
+    /// on the pattern alone, so a kept one is the analysis made anew.
+    struct Analysis
+    {
+      int                    n = 0;
+      std::vector<int>       Ap, Ai;
+      trilinos_klu_symbolic *symbolic = nullptr;
+    };
+    std::vector<Analysis> analyses;
+    static constexpr std::size_t kept_analyses = 8;
+
+    /// The current analysis to the front of `analyses` (if any), then the one
+    /// of exactly the pattern (offsets, columns), if kept, made current.
+    /// False: none kept (the current one is kept all the same).
+    bool recall(const int n, const int *offsets, const int *columns)
+    {
+      if (numeric)
+        trilinos_klu_free_numeric(&numeric, &common); // its analysis is leaving
+      if (symbolic)
+        {
+          Analysis current{this->n, std::move(Ap), std::move(Ai), symbolic};
+          symbolic = nullptr;
+          analyses.insert(analyses.begin(), std::move(current));
+          if (analyses.size() > kept_analyses)
+            {
+              trilinos_klu_free_symbolic(&analyses.back().symbolic, &common);
+              analyses.pop_back();
+            }
+        }
+      for (auto a = analyses.begin(); a != analyses.end(); ++a)
+        if (a->n == n && int(a->Ai.size()) == offsets[n] &&
+            std::equal(offsets, offsets + n + 1, a->Ap.begin()) &&
+            std::equal(columns, columns + offsets[n], a->Ai.begin()))
+          {
+            this->n  = n;
+            Ap       = std::move(a->Ap);
+            Ai       = std::move(a->Ai);
+            symbolic = a->symbolic;
+            analyses.erase(a);
+            return true;
+          }
+      return false;
+    }
   };
 
   namespace
@@ -269,6 +319,15 @@ namespace anvil
                           find_positions(n, offsets, columns, d.Ap, d.Ai, d.position);
         if (kept)
           ++analyses_kept;
+        else if (d.recall(n, offsets, columns))
+          {
+            // This pattern's analysis from before; factored with pivoting,
+            // as after a new analysis (the pivots kept are another pattern's).
+            trilinos_klu_defaults(&d.common);
+            ++analyses_recalled;
+            AssertThrow(find_positions(n, offsets, columns, d.Ap, d.Ai, d.position),
+                        ExcInternalError());
+          }
         else
           {
             // The matrix's own pattern. (The union with the analysed one was

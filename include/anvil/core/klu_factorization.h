@@ -87,6 +87,9 @@ namespace anvil
     unsigned long symbolic_factorizations = 0, numeric_factorizations = 0;
     /// New matrix objects whose pattern fitted the kept analysis (direct path).
     unsigned long analyses_kept = 0;
+    /// New patterns whose analysis was kept from an earlier matrix (the
+    /// last few patterns' analyses are kept: contact patterns recur).
+    unsigned long analyses_recalled = 0;
     /// Factorisations with pivoting made because a solve with reused pivots
     /// failed the backward-error check.
     unsigned long pivoting_retries = 0;
