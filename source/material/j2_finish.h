@@ -21,15 +21,16 @@ namespace anvil
     {
       /// The tangent of the radial return, factored (FactoredTangent) when the
       /// caller asks for it, else as 36 + 36 entries (C and ∂σ/∂σ̃ₙ).
-      [[gnu::always_inline]] inline void write_tangent(const MaterialRequest request, const bool adiabatic,
-                                const double K, const double G, const double H, const double dp,
+      [[gnu::always_inline]] inline void write_tangent(const MaterialRequest request, const double K,
+                                                       const double G, const double H, const double dp,
                                 const double q_trial, const double *n, MaterialResponse &response)
       {
         response.factored.active = false;
-        // Not for the adiabatic update: its rank-one terms (J2Point::update) in
-        // the factored form change the tangent's round-off, which moves the
-        // adiabatic scenes' Newton iterates by up to 1e-5 (necking_bar_thermal).
-        if ((request & request_tangent) && (request & request_factored_tangent) && !adiabatic)
+        // The adiabatic update adds its rank-one terms (J2Point::update) with
+        // the amplification apart: the planar rows expand the dense entries'
+        // bits (an amplified v changed them, which moved necking_bar_thermal's
+        // Newton iterates by up to 1e-5).
+        if ((request & request_tangent) && (request & request_factored_tangent))
           {
             // The same moduli as below, factored (FactoredTangent): the callers'
             // contractions take it as it is, no 72 entries are written.
@@ -114,7 +115,7 @@ namespace anvil
       eps_c   = eps_n + dp;
       response.equivalent_plastic_strain = eps_c;
 
-      write_tangent(request, inc.adiabatic, K, G, H, dp, q_trial, n, response);
+      write_tangent(request, K, G, H, dp, q_trial, n, response);
 
       if (request & request_temperature_derivative)
         {

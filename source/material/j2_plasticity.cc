@@ -154,13 +154,14 @@ namespace anvil
           // ∂σ/∂σ̃ₙ stays the identity (flagged: the mechanics skips S : δσ̃).
           if (FactoredTangent &f = response.factored; f.active)
             {
-              // The rank-one terms of the factored form: u = ∂σ/∂T, v, w amplified.
-              f.rank_one = true;
+              // The rank-one terms of the factored form: u = ∂σ/∂T, v, w, and
+              // the amplification apart (add_outer_product()'s s (u_p v_q)).
+              f.rank_one      = true;
+              f.amplification = amplification;
               const double *u = dsigma_dT.begin_raw(), *v = df_de.begin_raw(),
                            *w = df_ds.begin_raw();
               for (unsigned int c = 0; c < 6; ++c)
-                f.u[c] = u[c], f.v[c] = amplification * v[c],
-                f.w[c] = t.dp > 0 ? amplification * w[c] : 0.;
+                f.u[c] = u[c], f.v[c] = v[c], f.w[c] = t.dp > 0 ? w[c] : 0.;
             }
           else
             {

@@ -33,26 +33,36 @@ namespace anvil
      * The entries (p < N_ROWS, q in @p cols) of the factored C (or S if
      * @p SENSITIVITY) on 6x6 raw storage @p T, the others left as they are:
      * the planar contractions read no more, so a point builds these 16 to
-     * 24 entries instead of the material writing 72.
+     * 24 entries instead of the material writing 72. The factors are read
+     * into locals first: T is a double * that may alias f, so each store
+     * made the compiler read f's numbers again (session 16: the adiabatic
+     * rank-one term expanded this way cost more than the dense form it saved).
      */
-    template <unsigned int N_ROWS, bool SENSITIVITY, unsigned int n>
-    void expand_rows(const FactoredTangent &f, const unsigned int (&cols)[n], double *T)
+    template <unsigned int N_ROWS, bool SENSITIVITY, bool RANK_ONE, unsigned int n>
+    inline void expand_rows_of(const FactoredTangent &f, const unsigned int (&cols)[n], double *T)
     {
       const double  dev = SENSITIVITY ? -f.sensitivity_deviatoric : f.deviatoric;
       const double  vol = SENSITIVITY ? 0. : f.bulk;
       const double  nn  = SENSITIVITY ? f.sensitivity_normal : f.normal;
-      const double *r   = SENSITIVITY ? f.w : f.v;
+      const double  a   = f.sensitivity_deviatoric, amp = f.amplification;
+      const double *rf  = SENSITIVITY ? f.w : f.v;
+      double        nv[6], u[6], r[6];
+      for (unsigned int c = 0; c < 6; ++c)
+        nv[c] = f.n[c], u[c] = RANK_ONE ? f.u[c] : 0., r[c] = RANK_ONE ? rf[c] : 0.;
+#pragma GCC unroll 6
       for (unsigned int p = 0; p < N_ROWS; ++p)
         {
-          const double fp = nn * f.n[p];
+          const double fp = nn * nv[p];
+#pragma GCC unroll 6
           for (unsigned int i = 0; i < n; ++i)
             {
               const unsigned int q = cols[i];
-              // The sums fill_tangent()/fill_sensitivity() (j2_tangent.h) form: the same bits.
-              double e = fp * f.n[q];
+              // The sums fill_tangent()/fill_sensitivity() (j2_tangent.h) form,
+              // and the adiabatic rank-one term as add_outer_product() adds it
+              // (amplification apart): the same bits.
+              double e = fp * nv[q];
               if (SENSITIVITY)
                 {
-                  const double a = f.sensitivity_deviatoric;
                   if (p < 3 && q < 3)
                     e = (p == q ? 1. - a * (2. / 3) : a * (1. / 3)) + e;
                   else if (p == q)
@@ -62,11 +72,20 @@ namespace anvil
                 e = (vol + dev * ((p == q ? 1. : 0.) - 1. / 3)) + e;
               else if (p == q)
                 e = 0.5 * dev + e;
-              if (f.rank_one)
-                e += f.u[p] * r[q];
+              if (RANK_ONE)
+                e += amp * (u[p] * r[q]);
               T[6 * p + q] = e;
             }
         }
+    }
+
+    template <unsigned int N_ROWS, bool SENSITIVITY, unsigned int n>
+    void expand_rows(const FactoredTangent &f, const unsigned int (&cols)[n], double *T)
+    {
+      if (f.rank_one)
+        expand_rows_of<N_ROWS, SENSITIVITY, true>(f, cols, T);
+      else
+        expand_rows_of<N_ROWS, SENSITIVITY, false>(f, cols, T);
     }
 
     /**

@@ -67,18 +67,20 @@ namespace anvil
    * The consistent tangent of a radial return in factored form (seed §1.3:
    * the algorithmic modulus of the radial return, Simo & Hughes 1998 box 3.2),
    * on raw storage (00, 11, 22, 01, 02, 12):
-   *   C = bulk δ⊗δ + deviatoric I_dev + normal n⊗n  [+ u⊗v],
-   *   S = I_sym − sensitivity_deviatoric I_dev + sensitivity_normal n⊗n  [+ u⊗w]
+   *   C = bulk δ⊗δ + deviatoric I_dev + normal n⊗n  [+ amplification u⊗v],
+   *   S = I_sym − sensitivity_deviatoric I_dev + sensitivity_normal n⊗n  [+ amplification u⊗w]
    * (S unless MaterialResponse::sensitivity_is_identity), the bracketed
-   * rank-one terms if `rank_one` (the adiabatic update: u = ∂σ/∂T, v, w the
-   * amplified ∂ΔT_ad/∂Δε and ∂ΔT_ad/∂σ̃ₙ). C : d then costs a trace, a
-   * deviator and one or two dot products instead of a 6x6 product.
+   * rank-one terms if `rank_one` (the adiabatic update: u = ∂σ/∂T, v, w
+   * ∂ΔT_ad/∂Δε and ∂ΔT_ad/∂σ̃ₙ at fixed T, amplification 1/(1 − ∂ΔT_ad/∂T)).
+   * The amplification is kept apart so that an expanded entry is the dense
+   * form's sum, (…) + amplification (u_p v_q), bit for bit. C : d then costs
+   * a trace, a deviator and one or two dot products instead of a 6x6 product.
    */
   struct FactoredTangent
   {
     bool   active   = false; // set by the law (request_factored_tangent), else the dense form
     bool   rank_one = false;
-    double bulk = 0, deviatoric = 0, normal = 0;
+    double bulk = 0, deviatoric = 0, normal = 0, amplification = 1;
     double sensitivity_deviatoric = 0, sensitivity_normal = 0;
     double n[6] = {}, u[6] = {}, v[6] = {}, w[6] = {};
 
@@ -94,7 +96,7 @@ namespace anvil
     {
       const double tr = d[0] + d[1] + d[2];
       add<N>(d, deviatoric, bulk * tr - deviatoric * (tr / 3), normal * dot(n, d),
-             rank_one ? dot(v, d) : 0., s);
+             rank_one ? amplification * dot(v, d) : 0., s);
     }
     /// s[0..N) += (S : e)[0..N): α = 1 − a, β = a tr e/3, γ = (a − b) n : e.
     template <unsigned int N = 6>
@@ -102,7 +104,7 @@ namespace anvil
     {
       const double a = sensitivity_deviatoric;
       add<N>(e, 1 - a, a * ((e[0] + e[1] + e[2]) / 3), sensitivity_normal * dot(n, e),
-             rank_one ? dot(w, e) : 0., s);
+             rank_one ? amplification * dot(w, e) : 0., s);
     }
     /// s[0..N) += α d + β δ + γ n + ρ u.
     template <unsigned int N = 6>
@@ -121,10 +123,11 @@ namespace anvil
           {
             const double dev = p == q ? (p < 3 ? 2. / 3 : 0.5) : (p < 3 && q < 3 ? -1. / 3 : 0.);
             c[6 * p + q] = (p < 3 && q < 3 ? bulk : 0.) + deviatoric * dev + normal * n[p] * n[q] +
-                           (rank_one ? u[p] * v[q] : 0.);
+                           (rank_one ? amplification * (u[p] * v[q]) : 0.);
             if (t)
               t[6 * p + q] = (p == q ? (p < 3 ? 1. : 0.5) : 0.) - sensitivity_deviatoric * dev +
-                             sensitivity_normal * n[p] * n[q] + (rank_one ? u[p] * w[q] : 0.);
+                             sensitivity_normal * n[p] * n[q] +
+                             (rank_one ? amplification * (u[p] * w[q]) : 0.);
           }
     }
   };
