@@ -2,6 +2,7 @@
 // threads of this process (WorkStream), the kernels of assembly_kernels.h
 // per cell, the contact elements after it (doc/mechanics.md, "Assembly").
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/work_stream.h>
 #include <deal.II/grid/filtered_iterator.h>
 
@@ -15,6 +16,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 
 namespace anvil
 {
@@ -222,12 +224,27 @@ namespace anvil
       update_gradients | update_JxW_values |
       (axisymmetric ? update_values | update_quadrature_points : update_default) |
       (dynamic || context.body_force ? update_values : update_default);
-    using CellFilter = FilteredIterator<typename DoFHandler<dim>::active_cell_iterator>;
-    WorkStream::run(CellFilter(IteratorFilters::LocallyOwnedCell(), dof_handler.begin_active()),
-                    CellFilter(IteratorFilters::LocallyOwnedCell(), dof_handler.end()), worker,
-                    copier,
-                    ScratchData<dim>(*assembly_mapping, fe, quadrature, face_quadrature, flags),
-                    CopyData(fe.n_dofs_per_cell(), quadrature.size()));
+    ScratchData<dim> &scratch = kept_scratch_data(flags);
+    if (MultithreadInfo::n_threads() == 1)
+      {
+        // WorkStream's sequential loop, on the kept work space (it would
+        // build a sample and a copy of it: two FEValues triples per call).
+        // Each cell's worker fills what it reads, as from one cell to the
+        // next within a pass.
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (cell->is_locally_owned())
+            {
+              worker(cell, scratch, *kept_copy);
+              copier(*kept_copy);
+            }
+      }
+    else
+      {
+        using CellFilter = FilteredIterator<typename DoFHandler<dim>::active_cell_iterator>;
+        WorkStream::run(CellFilter(IteratorFilters::LocallyOwnedCell(), dof_handler.begin_active()),
+                        CellFilter(IteratorFilters::LocallyOwnedCell(), dof_handler.end()),
+                        worker, copier, scratch, *kept_copy);
+      }
 
     if (contact && !assemble_contact(with_matrix))
       {
@@ -264,6 +281,21 @@ namespace anvil
   }
 
   template <int dim>
+  MechanicsAssembly::ScratchData<dim> &
+  MechanicalProblem<dim>::kept_scratch_data(const UpdateFlags flags)
+  {
+    // The update flags are the scene's (axisymmetry, dynamics, gravity):
+    // one work space per problem in practice.
+    if (!kept_scratch || kept_scratch->cell_flags != flags)
+      kept_scratch = std::make_shared<MechanicsAssembly::ScratchData<dim>>(
+        *assembly_mapping, fe, quadrature, face_quadrature, flags);
+    if (!kept_copy)
+      kept_copy = std::make_shared<MechanicsAssembly::CopyData>(fe.n_dofs_per_cell(),
+                                                                quadrature.size());
+    return *kept_scratch;
+  }
+
+  template <int dim>
   void MechanicalProblem<dim>::compute_step_audit()
   {
     // The cells in the assembly's order, the points' terms summed as its
@@ -273,12 +305,23 @@ namespace anvil
     const MaterialPointUpdate<dim> material_update(context);
     const ReferenceValues<dim>    *reference = assembly_mapping->reference_values(
       fe, quadrature, formulation->component, axisymmetric);
-    ScratchData<dim> scratch(*assembly_mapping, fe, quadrature, face_quadrature,
-                             update_gradients | update_JxW_values |
-                               (axisymmetric ? update_values | update_quadrature_points :
-                                               update_default));
+    // The assembly's kept work space where it computes at least what this
+    // pass reads (it may add the values of dynamics or gravity: computed
+    // beside, they change nothing here).
+    const UpdateFlags audit_flags =
+      update_gradients | update_JxW_values |
+      (axisymmetric ? update_values | update_quadrature_points : update_default);
+    std::unique_ptr<ScratchData<dim>> own_scratch;
+    ScratchData<dim>                 *kept = kept_scratch.get();
+    if (!kept || (kept->cell_flags & audit_flags) != audit_flags)
+      kept = (own_scratch = std::make_unique<ScratchData<dim>>(*assembly_mapping, fe, quadrature,
+                                                               face_quadrature, audit_flags))
+               .get();
+    ScratchData<dim>  &scratch         = *kept;
     const unsigned int n_dofs_per_cell = fe.n_dofs_per_cell();
-    CopyData           copy(n_dofs_per_cell, quadrature.size());
+    if (!kept_copy)
+      kept_copy = std::make_shared<CopyData>(n_dofs_per_cell, quadrature.size());
+    CopyData &copy = *kept_copy;
     // The dof values by local index, as the assembly reads them (its look-ups, kept per mesh).
     const GhostedValues<dim> ghosted(*assembly_mapping, n_dofs_per_cell, solution, old_solution,
                                      nullptr, nullptr);
@@ -317,6 +360,8 @@ namespace anvil
 #define INSTANTIATE(dim)                                                                         \
   template bool MechanicalProblem<dim>::assemble(bool, double);                                 \
   template MechanicsAssembly::Context<dim> MechanicalProblem<dim>::assembly_context(bool, double); \
+  template MechanicsAssembly::ScratchData<dim> &MechanicalProblem<dim>::kept_scratch_data(     \
+    UpdateFlags);                                                                                \
   template void MechanicalProblem<dim>::compute_step_audit();
   ANVIL_INSTANTIATE(INSTANTIATE)
 #undef INSTANTIATE

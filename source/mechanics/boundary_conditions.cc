@@ -1,6 +1,8 @@
 #include <deal.II/base/function.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <anvil/core/scene.h>
@@ -161,6 +163,97 @@ namespace anvil
         VectorTools::interpolate_boundary_values(dof_handler, bc.boundary, f_new, v_new, bc.mask);
         for (const auto &[dof, v] : v_new)
           increments[dof] = 0.5 * (t_new - t_old) * (v + v_old[dof]);
+      }
+  }
+
+  namespace
+  {
+    /**
+     * The dofs interpolate_boundary_values() writes for @p list, with the
+     * points it evaluates them at: its loop (deal.II 9.4,
+     * vector_tools_boundary.templates.h) without the evaluation. Its writes
+     * in order (entry by entry, each a call of its own; cells; faces; face
+     * dofs), then the last write of each dof, which its map keeps.
+     */
+    template <int dim, typename Entry, typename Dof>
+    std::vector<Dof> find_points(const DoFHandler<dim> &dof_handler, const std::vector<Entry> &list)
+    {
+      std::map<types::global_dof_index, Dof> last;
+      if (list.empty())
+        return {};
+      const FiniteElement<dim> &fe = dof_handler.get_fe();
+      AssertThrow(fe.n_unique_faces() == 1 && fe.has_face_support_points(0) && fe.is_primitive(),
+                  ExcMessage("boundary values need a primitive element with face support points"));
+      FEFaceValues<dim> fe_values(get_default_linear_mapping(dof_handler.get_triangulation()), fe,
+                                  Quadrature<dim - 1>(fe.get_unit_face_support_points(0)),
+                                  update_quadrature_points);
+      std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face(0));
+      for (unsigned int e = 0; e < list.size(); ++e)
+        for (const auto &cell : dof_handler.active_cell_iterators())
+          if (!cell->is_artificial())
+            for (const unsigned int face_no : cell->face_indices())
+              {
+                const auto face = cell->face(face_no);
+                if (face->boundary_id() != list[e].boundary || fe.n_dofs_per_face(face_no) == 0)
+                  continue;
+                fe_values.reinit(cell, face_no);
+                face_dofs.resize(fe.n_dofs_per_face(face_no));
+                face->get_dof_indices(face_dofs, cell->active_fe_index());
+                for (unsigned int i = 0; i < face_dofs.size(); ++i)
+                  {
+                    const unsigned int c = fe.face_system_to_component_index(i, face_no).first;
+                    if (list[e].mask[c])
+                      last[face_dofs[i]] = Dof{face_dofs[i], e, c, fe_values.quadrature_point(i)};
+                  }
+              }
+      std::vector<Dof> dofs;
+      dofs.reserve(last.size());
+      for (const auto &[index, dof] : last)
+        dofs.push_back(dof);
+      return dofs;
+    }
+  } // namespace
+
+  template <int dim>
+  typename BoundaryConditions<dim>::Points
+  BoundaryConditions<dim>::points(const DoFHandler<dim> &dof_handler) const
+  {
+    Points p;
+    p.displacement = find_points<dim, PrescribedDisplacement, typename Points::Dof>(dof_handler, prescribed);
+    p.velocity = find_points<dim, PrescribedDisplacement, typename Points::Dof>(dof_handler, prescribed_velocity);
+    return p;
+  }
+
+  template <int dim>
+  void BoundaryConditions<dim>::values(const Points &points, const double t,
+                                       std::vector<double> &values) const
+  {
+    // As ComponentFunction::value, at the same points.
+    values.resize(points.displacement.size());
+    for (unsigned int k = 0; k < values.size(); ++k)
+      {
+        const auto &dof = points.displacement[k];
+        auto       &f   = *prescribed[dof.entry].components[dof.component];
+        f.set_time(t);
+        values[k] = f.value(dof.point);
+      }
+  }
+
+  template <int dim>
+  void BoundaryConditions<dim>::velocity_increments(const Points &points, const double t_old,
+                                                    const double t_new,
+                                                    std::vector<double> &increments) const
+  {
+    increments.resize(points.velocity.size());
+    for (unsigned int k = 0; k < increments.size(); ++k)
+      {
+        const auto &dof = points.velocity[k];
+        auto       &f   = *prescribed_velocity[dof.entry].components[dof.component];
+        f.set_time(t_old);
+        const double v_old = f.value(dof.point);
+        f.set_time(t_new);
+        const double v = f.value(dof.point);
+        increments[k]  = 0.5 * (t_new - t_old) * (v + v_old);
       }
   }
 

@@ -90,6 +90,7 @@ namespace anvil
     dof_handler.distribute_dofs(fe);
     cell_masses.clear();
     boundary_dofs.clear();
+    kept_predictor = KeptPredictor();
     {
       // The assembly's cells in the order of the loop (WorkStream's too).
       std::vector<typename Triangulation<dim>::cell_iterator> cells;

@@ -27,10 +27,11 @@ namespace anvil
                                TrilinosWrappers::MPI::Vector       &u_ghosted,
                                const TrilinosWrappers::MPI::Vector &du,
                                const TrilinosWrappers::MPI::Vector &rhs,
+                               TrilinosWrappers::MPI::Vector       &u_start,
                                EvaluateResidual                   &&evaluate_residual)
     {
-      const double                        s0      = -(du * rhs);
-      const TrilinosWrappers::MPI::Vector u_start = u;
+      const double s0 = -(du * rhs);
+      u_start         = u;
       u.add(1., du);
       u_ghosted = u;
       if (evaluate_residual())
@@ -200,8 +201,8 @@ namespace anvil
     bool       assembled = false;
     const bool has_jump  = predict(time_old, time_new, from_last_solution, &assembled);
 
-    TrilinosWrappers::MPI::Vector du;
-    du.reinit(system_rhs); // its layout object: copies among the vectors are plain copies
+    // Of system_rhs's layout: copies among the vectors are plain copies.
+    TrilinosWrappers::MPI::Vector &du = owned_work(work_increment);
     double last_increment = -1;
     // When the next test will almost surely converge (quadratic phase, see
     // likely_converged below), the full step's state is evaluated for its
@@ -306,6 +307,7 @@ namespace anvil
         const bool full_step = (it == 0 && has_jump) || residual_ok || likely_converged;
         if (it == 0 && one_update_expected && !full_step && parameters.line_search)
           residual_ready = full_step_on_residual(owned_solution, solution, du, system_rhs,
+                                                 owned_work(work_start),
                                                  [&] { return assemble(false, time_new); });
         if (residual_ready)
           {
@@ -378,31 +380,70 @@ namespace anvil
   void MechanicalProblem<dim>::build_predictor_constraints(const double time_old,
                                                            const double time_new)
   {
+    // The prescribed dofs and their points once per numbering, the
+    // functions evaluated at every step (BoundaryConditions::Points).
+    KeptPredictor &kept = kept_predictor;
+    if (!kept.found)
+      kept.points = boundary_conditions.points(dof_handler);
+    boundary_conditions.values(kept.points, time_new, kept.values);
+    boundary_conditions.velocity_increments(kept.points, time_old, time_new, kept.increments);
+    const auto &displacement = kept.points.displacement;
+    const auto &velocity     = kept.points.velocity;
+    active_constraints       = &predictor_constraints;
+    if (kept.lines_kept)
+      {
+        // The same lines as the last build (hanging nodes, axis, supports,
+        // remote), closed, none with entries: only the jumps are new.
+        for (unsigned int k = 0; k < displacement.size(); ++k)
+          if (kept.displacement_line[k])
+            predictor_constraints.set_inhomogeneity(displacement[k].index,
+                                                    kept.values[k] - solution(displacement[k].index));
+        for (unsigned int k = 0; k < velocity.size(); ++k)
+          if (kept.velocity_line[k])
+            {
+              const auto dof = velocity[k].index;
+              predictor_constraints.set_inhomogeneity(dof, kept.increments[k] + old_solution(dof) -
+                                                             solution(dof));
+            }
+        return;
+      }
+
     predictor_constraints.clear();
     predictor_constraints.reinit(constraint_lines);
     DoFTools::make_hanging_node_constraints(dof_handler, predictor_constraints);
     make_axis_constraints(predictor_constraints);
-    {
-      std::map<types::global_dof_index, double> values;
-      boundary_conditions.interpolate(dof_handler, time_new, values);
-      for (const auto &[dof, value] : values)
+    kept.displacement_line.assign(displacement.size(), 0);
+    kept.velocity_line.assign(velocity.size(), 0);
+    for (unsigned int k = 0; k < displacement.size(); ++k)
+      {
+        const auto dof = displacement[k].index;
         if (locally_relevant_dofs.is_element(dof) && !predictor_constraints.is_constrained(dof))
           {
             predictor_constraints.add_line(dof);
-            predictor_constraints.set_inhomogeneity(dof, value - solution(dof));
+            predictor_constraints.set_inhomogeneity(dof, kept.values[k] - solution(dof));
+            kept.displacement_line[k] = 1;
           }
-      std::map<types::global_dof_index, double> increments;
-      boundary_conditions.interpolate_velocity_increment(dof_handler, time_old, time_new, increments);
-      for (const auto &[dof, increment] : increments)
+      }
+    for (unsigned int k = 0; k < velocity.size(); ++k)
+      {
+        const auto dof = velocity[k].index;
         if (locally_relevant_dofs.is_element(dof) && !predictor_constraints.is_constrained(dof))
           {
             predictor_constraints.add_line(dof);
-            predictor_constraints.set_inhomogeneity(dof, increment + old_solution(dof) - solution(dof));
+            predictor_constraints.set_inhomogeneity(dof, kept.increments[k] + old_solution(dof) -
+                                                           solution(dof));
+            kept.velocity_line[k] = 1;
           }
-    }
+      }
     add_remote_constraints(predictor_constraints);
     predictor_constraints.close();
-    active_constraints = &predictor_constraints;
+    // Lines with masters (hanging nodes) take their masters' jumps in
+    // close(): those are built at every step.
+    kept.found      = true;
+    kept.lines_kept = true;
+    for (const auto &line : predictor_constraints.get_lines())
+      if (!line.entries.empty())
+        kept.lines_kept = false;
   }
 
   template <int dim>
@@ -417,7 +458,8 @@ namespace anvil
     // element inverts; then α follows the secant root of s, within [0.1, 1].
     // The full step is tried with the matrix: it is kept far more often than
     // not, and then the next iteration needs K and R at exactly this state.
-    const TrilinosWrappers::MPI::Vector u_start = owned_solution;
+    TrilinosWrappers::MPI::Vector &u_start = owned_work(work_start);
+    u_start                                = owned_solution;
     double       alpha = 1;
     const double s0    = -(du * system_rhs);
     assembled          = false;
@@ -473,14 +515,24 @@ namespace anvil
   {
     if (!assemble(true, current_time))
       return false;
-    TrilinosWrappers::MPI::Vector du;
-    du.reinit(system_rhs);
+    TrilinosWrappers::MPI::Vector &du = owned_work(work_increment);
+    du                                = 0;
     linear_iterations += solve_linear_system(du);
     distribute_constraints(*active_constraints, du);
     active_constraints = &constraints;
     owned_solution += du;
     solution = owned_solution;
     return true;
+  }
+
+  template <int dim>
+  TrilinosWrappers::MPI::Vector &MechanicalProblem<dim>::owned_work(TrilinosWrappers::MPI::Vector &v)
+  {
+    // A vector reinit from system_rhs shares its map's data (operator='s
+    // plain copy); setup() makes a new map.
+    if (v.trilinos_vector().Map().DataPtr() != system_rhs.trilinos_vector().Map().DataPtr())
+      v.reinit(system_rhs);
+    return v;
   }
 
   template <int dim>
@@ -520,6 +572,8 @@ namespace anvil
   template bool   MechanicalProblem<dim>::begin_step(double, double);                            \
   template bool   MechanicalProblem<dim>::predictor_update(unsigned int &);                      \
   template void   MechanicalProblem<dim>::set_displacement(const TrilinosWrappers::MPI::Vector &); \
+  template TrilinosWrappers::MPI::Vector &MechanicalProblem<dim>::owned_work(                   \
+    TrilinosWrappers::MPI::Vector &);                                                            \
   template double MechanicalProblem<dim>::force_scale() const;
   ANVIL_INSTANTIATE(INSTANTIATE)
 #undef INSTANTIATE

@@ -166,7 +166,8 @@ namespace anvil
   template <int dim>
   void MechanicalProblem<dim>::commit_step()
   {
-    TrilinosWrappers::MPI::Vector du(owned_solution);
+    TrilinosWrappers::MPI::Vector &du = owned_work(work_increment);
+    du                                = owned_solution;
     du -= owned_old_solution;
     // The owned vectors share locally_owned_dofs' layout: the k-th local
     // entry of each is one dof's, so element-wise updates run on the arrays.
@@ -206,7 +207,8 @@ namespace anvil
     reaction_force = internal_force;
     reaction_force += inertia_force;
     reaction_force -= external_force;
-    TrilinosWrappers::MPI::Vector mean(external_force);
+    TrilinosWrappers::MPI::Vector &mean = owned_work(work_sum);
+    mean                                = external_force;
     mean += external_force_old;
     {
       double *const       m      = mean.begin();

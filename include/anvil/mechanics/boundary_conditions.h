@@ -58,7 +58,8 @@ namespace anvil
     const std::vector<PrescribedDisplacement> &velocities() const { return prescribed_velocity; }
     const std::vector<Pressure>               &pressures() const { return pressure_loads; }
 
-    /// Values of the prescribed displacement components at time @p t, per dof.
+    /// Values of the prescribed displacement components at time @p t, per dof
+    /// (deal.II's interpolate_boundary_values: a test's reference for Points).
     void interpolate(const dealii::DoFHandler<dim>            &dof_handler,
                      double                                    t,
                      std::map<dealii::types::global_dof_index, double> &values) const;
@@ -69,6 +70,33 @@ namespace anvil
                                         double                                           t_old,
                                         double                                           t_new,
                                         std::map<dealii::types::global_dof_index, double> &increments) const;
+
+    /**
+     * The prescribed components' dofs and their support points, found once
+     * per dof numbering by interpolate_boundary_values' own loop (faces,
+     * unit face support points through the default Q1 mapping): each step
+     * then evaluates the functions only, at the same points, so the values
+     * are interpolate()'s bit for bit. Each dof once, in increasing order,
+     * with the point and list entry of the face that wrote it last (later
+     * faces and entries overwrite earlier ones in interpolate()'s map).
+     */
+    struct Points
+    {
+      struct Dof
+      {
+        dealii::types::global_dof_index index;
+        unsigned int                    entry, component; // in the list, of the function
+        dealii::Point<dim>              point;
+      };
+      std::vector<Dof> displacement, velocity; // displacements(), velocities()
+      bool             empty() const { return displacement.empty() && velocity.empty(); }
+    };
+    Points points(const dealii::DoFHandler<dim> &dof_handler) const;
+    /// interpolate() at the kept points: @p values[k] for points.displacement[k].
+    void values(const Points &points, double t, std::vector<double> &values) const;
+    /// interpolate_velocity_increment() at the kept points, per points.velocity[k].
+    void velocity_increments(const Points &points, double t_old, double t_new,
+                             std::vector<double> &increments) const;
 
     /// Zero constraints on every prescribed component (for Newton updates).
     void make_homogeneous_constraints(const dealii::DoFHandler<dim>     &dof_handler,

@@ -42,6 +42,9 @@ namespace anvil
     struct Context;
     template <int dim>
     class AssemblyMapping;
+    template <int dim>
+    struct ScratchData;
+    struct CopyData;
   } // namespace MechanicsAssembly
 
   class Scene;
@@ -313,6 +316,8 @@ namespace anvil
     bool assemble(bool with_matrix, double time);
     /// What the assembly's kernels read (assembly_data.h).
     MechanicsAssembly::Context<dim> assembly_context(bool with_matrix, double time);
+    /// kept_scratch for these cell update flags (made anew if they differ), kept_copy.
+    MechanicsAssembly::ScratchData<dim> &kept_scratch_data(dealii::UpdateFlags flags);
     /// The contact elements into the system, serially; false if the matrix must grow.
     bool assemble_contact(bool with_matrix);
     /// The first iterate of a step (extrapolated, or the last solution) and
@@ -379,6 +384,20 @@ namespace anvil
     dealii::IndexSet          locally_owned_dofs, locally_relevant_dofs;
     dealii::AffineConstraints<double> constraints;           // homogeneous: Newton updates
     dealii::AffineConstraints<double> predictor_constraints; // first iteration: the BC jump
+    /// What build_predictor_constraints() keeps per dof numbering (newton.cc;
+    /// setup() empties it): the prescribed dofs and their points, which of
+    /// them are lines, and whether the lines stay the same from step to step.
+    struct KeptPredictor
+    {
+      bool                                     found = false; // points and flags below
+      typename BoundaryConditions<dim>::Points points;
+      std::vector<unsigned char>               displacement_line, velocity_line;
+      /// No line has entries: close() changes no inhomogeneity, so the
+      /// closed lines of the last build take the step's values in place.
+      bool                                     lines_kept = false;
+      std::vector<double>                      values, increments; // work space
+    };
+    KeptPredictor kept_predictor;
     const dealii::AffineConstraints<double> *active_constraints = &constraints;
 
     dealii::TrilinosWrappers::SparseMatrix system_matrix;
@@ -454,5 +473,16 @@ namespace anvil
     mutable std::map<dealii::types::boundary_id,
                      std::vector<std::pair<dealii::types::global_dof_index, unsigned int>>>
       boundary_dofs; // owned_boundary_dofs()
+    /// The assembly's work space, kept from one assembly to the next (its
+    /// FEValues cost ~120 000 instructions to build; assembly.cc). Declared
+    /// after the mapping and the element it points to, so destroyed first.
+    std::shared_ptr<MechanicsAssembly::ScratchData<dim>> kept_scratch;
+    std::shared_ptr<MechanicsAssembly::CopyData>         kept_copy;
+    /// Work vectors of the owned layout kept between steps (a Trilinos vector
+    /// constructed as a copy costs ~47 000 instructions on the tube: its
+    /// Epetra_FEVector and map): Newton's increment, the line search's start,
+    /// the commit's sums. owned_work() gives one the layout of system_rhs.
+    dealii::TrilinosWrappers::MPI::Vector work_increment, work_start, work_sum;
+    dealii::TrilinosWrappers::MPI::Vector &owned_work(dealii::TrilinosWrappers::MPI::Vector &v);
   };
 } // namespace anvil
