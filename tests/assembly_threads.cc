@@ -1,7 +1,7 @@
 // The mechanical assembly (WorkStream over cells, the copier adding them in
 // cell order) gives the same tangent and residual on 1 and on 2 threads,
-// entry by entry. Independent answer: the 1-thread assembly runs deal.II's
-// sequential loop, the serial code path. Cases: plane strain J2 F-bar with a
+// entry by entry. Independent answer: the 1-thread assembly runs anvil's own
+// serial loop on the kept work space, not WorkStream. Cases: plane strain J2 F-bar with a
 // follower pressure (tests/plastic_block.prm), axisymmetric, 3D; each
 // quasi-static and with implicit dynamics (generalized-α, consistent and
 // lumped mass) and gravity. The state is two steps into plastic flow (the
