@@ -239,6 +239,125 @@ namespace anvil
               K1[b] += gx[a + 1] * AG[2][b] + gy[a + 1] * AG[3][b];
           }
       }
+
+      /// Four doubles; unaligned loads and stores through v4u.
+      typedef double v4 __attribute__((vector_size(32)));
+      typedef double v4u __attribute__((vector_size(32), aligned(8)));
+
+      /**
+       * planar_tangent_matrix<4> (plane strain), four directions c at once:
+       * A's column d and T0 as vectors over c = (0,0), (0,1), (1,0), (1,1),
+       * each entry the same products and sums in the same order (no FMA),
+       * so the same bits. @p At: Aᵀ (At[d][c] = A[c][d]).
+       */
+      __attribute__((target_clones("avx2", "default"))) void
+      plane_strain_tangent_matrix(const PointValues &p, const PlanarPoint &pp,
+                                  const SymmetricTensor<2, 3> *dsigma, const bool f_bar_on,
+                                  const double alpha, double (&At)[4][4], double (&T0)[4])
+      {
+        constexpr unsigned int k_of[4] = {0, 0, 1, 1}, L_of[4] = {0, 1, 0, 1};
+        const double(&Fi)[3][3]   = pp.Fi;
+        const double(&sFiT)[3][3] = pp.sFiT;
+        const double J            = p.J;
+        // δσ's raw components 00, 11, 22, 01 of each direction (22 unused off the hoop).
+        v4 D[4];
+        for (unsigned int d = 0; d < 4; ++d)
+          D[d] = *reinterpret_cast<const v4u *>(&dsigma[d].access_raw_entry(0));
+        v4 dF = {0, 0, 0, 0}; // δσ in the direction F̄ (FBar::stress_along)
+        if (f_bar_on)
+          for (unsigned int d = 0; d < 4; ++d)
+            dF += p.F_mat[k_of[d]][L_of[d]] * D[d];
+        const v4 vrs = *reinterpret_cast<const v4u *>(
+          &p.response.volume_ratio_sensitivity.access_raw_entry(0));
+        // (F⁻¹)_{J_c 0}, (F⁻¹)_{J_c 1} and (σF⁻ᵀ)_{i_c J_c} over c
+        const v4 FiJ0 = {Fi[0][0], Fi[1][0], Fi[0][0], Fi[1][0]},
+                 FiJ1 = {Fi[0][1], Fi[1][1], Fi[0][1], Fi[1][1]},
+                 SF   = {sFiT[0][0], sFiT[0][1], sFiT[1][0], sFiT[1][1]};
+        for (unsigned int d = 0; d < 4; ++d)
+          {
+            const unsigned int k = k_of[d], L = L_of[d];
+            const double       FiLk = Fi[L][k];
+            v4                 ds   = D[d];
+            if (f_bar_on) // FBar::stress_derivative
+              ds = p.beta * ds - (alpha * FiLk) * dF;
+            if (p.adiabatic)
+              ds += FiLk * vrs;
+            // (δσ F⁻ᵀ)_c: (i == 0 ? ds00 : ds01) F⁻¹_J0 + (i == 0 ? ds01 : ds11) F⁻¹_J1
+            const v4 s0 = {ds[0], ds[0], ds[3], ds[3]}, s1 = {ds[3], ds[3], ds[1], ds[1]};
+            const v4 sL = {sFiT[0][L], sFiT[0][L], sFiT[1][L], sFiT[1][L]},
+                     Fk = {Fi[0][k], Fi[1][k], Fi[0][k], Fi[1][k]};
+            const v4 a = (FiLk * SF + (s0 * FiJ0 + s1 * FiJ1)) - sL * Fk;
+            *reinterpret_cast<v4u *>(At[d]) = J * a;
+          }
+        if (f_bar_on) // FBar::centre_coupling
+          {
+            const v4 s0 = {dF[0], dF[0], dF[3], dF[3]}, s1 = {dF[3], dF[3], dF[1], dF[1]};
+            *reinterpret_cast<v4u *>(T0) = (J * alpha) * (s0 * FiJ0 + s1 * FiJ1);
+          }
+      }
+
+      /// The cell's points of a plane-strain Q1 element, for the tangent.
+      struct PlaneStrainPoints
+      {
+        static constexpr unsigned int max_points = 9;
+        double At[max_points][4][4], T0[max_points][4]; // Aᵀ per point
+        double gx[max_points][8], gy[max_points][8], w[max_points];
+      };
+
+      /**
+       * K += Σ_q G_qᵀ (A_q G_q + T0_q ⊗ tr) w_q for plane-strain Q1 (8
+       * interleaved dofs): add_planar_tangent<8, false>'s products and sums,
+       * element by element in the same order (AG = (A_c0 gx + A_c1 gy +
+       * T0_c tr) w; K_ab += gx_a AG_0b + gy_a AG_1b), so the same bits; four
+       * entries per operation, and each row of K added over the points
+       * before it is stored (the points' updates in their order). Compiled
+       * for AVX2 and for base x86-64 (no FMA: the same rounding on either).
+       */
+      __attribute__((target_clones("avx2", "default"))) void
+      add_plane_strain_tangent(const PlaneStrainPoints &pts, const unsigned int n_q,
+                               const double *__restrict tr, double *__restrict K)
+      {
+        v4 AG[PlaneStrainPoints::max_points][4][2];
+        v4 TR[2] = {};
+        if (tr)
+          TR[0] = *reinterpret_cast<const v4u *>(tr), TR[1] = *reinterpret_cast<const v4u *>(tr + 4);
+        for (unsigned int q = 0; q < n_q; ++q)
+          {
+            const v4 GX[2] = {*reinterpret_cast<const v4u *>(pts.gx[q]),
+                              *reinterpret_cast<const v4u *>(pts.gx[q] + 4)};
+            const v4 GY[2] = {*reinterpret_cast<const v4u *>(pts.gy[q]),
+                              *reinterpret_cast<const v4u *>(pts.gy[q] + 4)};
+            const double w = pts.w[q];
+            for (unsigned int c = 0; c < 4; ++c)
+              {
+                const double(&At)[4][4] = pts.At[q];
+                // even dofs (component 0) read A_c0, A_c1; odd ones A_c2, A_c3
+                const v4 ax = {At[0][c], At[2][c], At[0][c], At[2][c]},
+                         ay = {At[1][c], At[3][c], At[1][c], At[3][c]};
+                for (unsigned int h = 0; h < 2; ++h)
+                  {
+                    v4 s = ax * GX[h] + ay * GY[h];
+                    if (tr)
+                      s += pts.T0[q][c] * TR[h];
+                    AG[q][c][h] = s * w;
+                  }
+              }
+          }
+        for (unsigned int a = 0; a < 8; a += 2)
+          for (unsigned int h = 0; h < 2; ++h)
+            {
+              v4u *const K0 = reinterpret_cast<v4u *>(K + a * 8 + 4 * h);
+              v4u *const K1 = reinterpret_cast<v4u *>(K + (a + 1) * 8 + 4 * h);
+              v4         k0 = *K0, k1 = *K1;
+              for (unsigned int q = 0; q < n_q; ++q)
+                {
+                  k0 += pts.gx[q][a] * AG[q][0][h] + pts.gy[q][a] * AG[q][1][h];
+                  k1 += pts.gx[q][a + 1] * AG[q][2][h] + pts.gy[q][a + 1] * AG[q][3][h];
+                }
+              *K0 = k0;
+              *K1 = k1;
+            }
+      }
     } // namespace
 
     template <int dim>
@@ -259,7 +378,13 @@ namespace anvil
       const bool              f_bar_on    = formulation.f_bar;
       const ReferenceCellValues &cell     = scratch.cell;
       double                  gx[N_DOFS], gy[N_DOFS], h[N_DOFS];
-      for (unsigned int q = 0; q < scratch.points.size(); ++q)
+      // Plane-strain Q1: each point's A and shape gradients kept, K added
+      // once per cell (add_plane_strain_tangent).
+      constexpr bool plane_q1 = N_DOFS == 8 && !HOOP;
+      const unsigned int n_q  = scratch.points.size();
+      const bool         fused = plane_q1 && context.with_matrix && n_q <= PlaneStrainPoints::max_points;
+      PlaneStrainPoints  pts;
+      for (unsigned int q = 0; q < n_q; ++q)
         {
           const PointValues &p = scratch.points[q];
           // P = J σ F⁻ᵀ with the true J and F: ∫ σ : ∇ₓδv dv on the current volume.
@@ -295,12 +420,25 @@ namespace anvil
           else
             cauchy_tangent(p.kin, p.point->committed_stress(), p.response, formulation.directions,
                            dsigma.data());
+          if constexpr (plane_q1)
+            if (fused)
+              {
+                plane_strain_tangent_matrix(p, pp, dsigma.data(), f_bar_on, formulation.alpha,
+                                            pts.At[q], pts.T0[q]);
+                std::copy(gx, gx + 8, pts.gx[q]);
+                std::copy(gy, gy + 8, pts.gy[q]);
+                pts.w[q] = p.w;
+                continue;
+              }
           planar_tangent_matrix<N_DIR>(p, pp, dsigma.data(), f_bar_on, formulation.alpha, scratch.A,
                                        scratch.T0);
           add_planar_tangent<N_DOFS, HOOP>(scratch.A, gx, gy, h, scratch.T0.data(),
                                            f_bar_on ? scratch.center_trace.data() : nullptr, p.w,
                                            &copy.matrix(0, 0));
         }
+      if (fused)
+        add_plane_strain_tangent(pts, n_q, f_bar_on ? scratch.center_trace.data() : nullptr,
+                                 &copy.matrix(0, 0));
     }
 
     template <int dim>
