@@ -296,6 +296,33 @@ namespace anvil
           }
       }
 
+      typedef long long v4i __attribute__((vector_size(32)));
+
+      /**
+       * The internal forces of one point of a plane-strain Q1 element:
+       * f_a += (P_c0 ∂N_a/∂X + P_c1 ∂N_a/∂Y) w with c the component of dof a,
+       * as assemble_planar's loop (the same bits), four dofs at once; the
+       * shape gradients @p grad ([a][d]) split into @p gx and @p gy.
+       */
+      __attribute__((target_clones("avx2", "default"))) void
+      plane_strain_forces(const double *__restrict grad, const double P00, const double P01,
+                          const double P10, const double P11, const double w,
+                          double *__restrict f, double *__restrict gx, double *__restrict gy)
+      {
+        const v4 Pc0 = {P00, P10, P00, P10}, Pc1 = {P01, P11, P01, P11};
+        for (unsigned int h = 0; h < 2; ++h)
+          {
+            const v4 g0 = *reinterpret_cast<const v4u *>(grad + 8 * h),
+                     g1 = *reinterpret_cast<const v4u *>(grad + 8 * h + 4);
+            const v4 x = __builtin_shuffle(g0, g1, v4i{0, 2, 4, 6}),
+                     y = __builtin_shuffle(g0, g1, v4i{1, 3, 5, 7});
+            *reinterpret_cast<v4u *>(gx + 4 * h) = x;
+            *reinterpret_cast<v4u *>(gy + 4 * h) = y;
+            v4u *const fh = reinterpret_cast<v4u *>(f + 4 * h);
+            *fh += (Pc0 * x + Pc1 * y) * w;
+          }
+      }
+
       /// The cell's points of a plane-strain Q1 element, for the tangent.
       struct PlaneStrainPoints
       {
@@ -393,12 +420,19 @@ namespace anvil
                        P10 = p.J * pp.sFiT[1][0], P11 = p.J * pp.sFiT[1][1],
                        P22 = p.J * pp.sFiT[2][2];
           const double *grad = cell.grad + q * N_DOFS * 2;
-          for (unsigned int a = 0; a < N_DOFS; ++a)
+          if constexpr (plane_q1)
             {
-              gx[a] = grad[2 * a];
-              gy[a] = grad[2 * a + 1];
+              plane_strain_forces(grad, P00, P01, P10, P11, p.w, copy.internal.begin(),
+                                  fused ? pts.gx[q] : gx, fused ? pts.gy[q] : gy);
+              (void)P22;
             }
-          for (unsigned int a = 0; a < N_DOFS; a += 2)
+          else
+            for (unsigned int a = 0; a < N_DOFS; ++a)
+              {
+                gx[a] = grad[2 * a];
+                gy[a] = grad[2 * a + 1];
+              }
+          for (unsigned int a = 0; a < N_DOFS && !plane_q1; a += 2)
             {
               double f0 = P00 * gx[a] + P01 * gy[a];
               if (HOOP) // δF₃₃ = δu_r/R
@@ -425,8 +459,6 @@ namespace anvil
               {
                 plane_strain_tangent_matrix(p, pp, dsigma.data(), f_bar_on, formulation.alpha,
                                             pts.At[q], pts.T0[q]);
-                std::copy(gx, gx + 8, pts.gx[q]);
-                std::copy(gy, gy + 8, pts.gy[q]);
                 pts.w[q] = p.w;
                 continue;
               }
