@@ -126,6 +126,8 @@ namespace anvil
               const int     j    = j0 + k;
               double *const lj   = at(j, j);
               int           last = std::min(b.lower, n - 1 - j);
+              if (column_end[j] > 0) // the caller's bound: zeros below it (not scanned)
+                last = std::min(last, column_end[j]);
               const int     p    = find_pivot(lj, last);
               if (p < 0)
                 return -1. - j;

@@ -209,17 +209,28 @@ namespace anvil
     const int diagonal = band_kernel::diagonal_row(lower, upper);
     position.resize(offsets[n]);
     pattern_row_end.resize(n);
+    column_reach.assign(n, 0);
     for (int row = 0; row < n; ++row)
       {
-        const int i = permutation[row];
-        int      &e = pattern_row_end[i];
-        e           = i;
+        const int i     = permutation[row];
+        int      &e     = pattern_row_end[i];
+        int       first = i;
+        e               = i;
         for (int k = offsets[row]; k < offsets[row + 1]; ++k)
           {
             const int j = permutation[columns[k]];
             position[k] = static_cast<std::size_t>(j) * stride + diagonal + i - j;
             e           = std::max(e, j);
+            first       = std::min(first, j);
           }
+        column_reach[first] = std::max(column_reach[first], i);
+      }
+    // A row's entries left of its first column stay zero until a step
+    // reaches it: steps k < j touch rows up to the reach of column k only.
+    for (int j = 0, furthest = 0; j < n; ++j)
+      {
+        furthest        = std::max({furthest, column_reach[j], j});
+        column_reach[j] = furthest - j;
       }
   }
 
@@ -235,7 +246,7 @@ namespace anvil
     for (std::size_t k = 0; k < position.size(); ++k)
       band[position[k]] = values[k];
     pivot.resize(n);
-    column_end.resize(n);
+    column_end = column_reach; // bounds on entry
     column_top.resize(n);
     row_end = pattern_row_end;
     const double multiply_adds = band_kernel::eliminate(layout(), pivot.data(), column_end.data(),

@@ -60,17 +60,19 @@ namespace anvil
                                         const double *__restrict u, const bool hoop,
                                         double (&g)[2][2], double &u_r)
       {
-        double g00 = 0, g01 = 0, g10 = 0, g11 = 0, r = 0;
+        // (g00, g01) and (g10, g11) as pairs: each lane the scalar sum.
+        typedef double v2 __attribute__((vector_size(16)));
+        typedef double v2u __attribute__((vector_size(16), aligned(8)));
+        v2     g0 = {0, 0}, g1 = {0, 0};
+        double r  = 0;
         for (unsigned int a = 0; a < N_DOFS; a += 2)
           {
-            g00 += u[a] * grad[2 * a];
-            g01 += u[a] * grad[2 * a + 1];
-            g10 += u[a + 1] * grad[2 * a + 2];
-            g11 += u[a + 1] * grad[2 * a + 3];
+            g0 += u[a] * *reinterpret_cast<const v2u *>(grad + 2 * a);
+            g1 += u[a + 1] * *reinterpret_cast<const v2u *>(grad + 2 * a + 2);
             if (hoop)
               r += u[a] * value[a];
           }
-        g[0][0] = g00, g[0][1] = g01, g[1][0] = g10, g[1][1] = g11;
+        g[0][0] = g0[0], g[0][1] = g0[1], g[1][0] = g1[0], g[1][1] = g1[1];
         u_r = r;
       }
     } // namespace

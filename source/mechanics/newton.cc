@@ -216,7 +216,6 @@ namespace anvil
     const bool one_update_expected = last_step_iterations == 1;
     last_step_iterations           = 0;
     bool residual_ready            = false; // R (not K) already at the iterate
-    bool step_cut                  = false; // a line search of this step took α < 1
     for (unsigned int it = 0;; ++it)
       {
         if (!assembled && !residual_ready && !assemble(!residual_only, time_new))
@@ -322,14 +321,7 @@ namespace anvil
             // the scene may ask for a stricter search; near it s(α) is noise.
             const double bound = r > 0.1 * result.residuals.front() ?
                                    parameters.line_search_far_bound : 0.8;
-            // In: whether the full-step trial assembles K. After a cut in
-            // this step the next full step will likely be cut too (two_blocks'
-            // stick-slip step: nine in a row): its trial is a residual, and K
-            // is assembled once α is found.
-            assembled = !step_cut;
-            const double alpha = line_search(du, full_step, time_new, assembled, bound);
-            step_cut           = step_cut || alpha < 1;
-            result.line_search_steps.push_back(alpha);
+            result.line_search_steps.push_back(line_search(du, full_step, time_new, assembled, bound));
           }
         residual_only =
           (residual_ok || likely_converged || (it == 0 && one_update_expected)) && !assembled;
@@ -470,10 +462,7 @@ namespace anvil
     u_start                                = owned_solution;
     double       alpha = 1;
     const double s0    = -(du * system_rhs);
-    // @p assembled in: the full step's trial assembles K too (out: K and R
-    // assembled at the returned state).
-    const bool trial_matrix = assembled;
-    assembled               = false;
+    assembled          = false;
     for (unsigned int ls = 0;; ++ls)
       {
         owned_solution = u_start;
@@ -482,8 +471,8 @@ namespace anvil
         assembled = false;
         if (!parameters.line_search || ls == 5 || full_step)
           break;
-        const bool ok = assemble(ls == 0 && trial_matrix, time_new);
-        assembled     = ok && ls == 0 && trial_matrix;
+        const bool ok = assemble(ls == 0, time_new);
+        assembled     = ok && ls == 0;
         if (!ok)
           {
             alpha *= 0.5;

@@ -30,7 +30,8 @@ namespace anvil
 
     /// The LU factors in place, with partial pivoting (the row dgbtf2's
     /// idamax picks), skipping exact zeros. @p pivot: the row exchanged
-    /// with row j; @p column_end: L's column j's last nonzero row − j;
+    /// with row j; @p column_end: L's column j's last nonzero row − j (on
+    /// entry, where > 0, a bound on it: the rows below stay exact zeros);
     /// @p row_end: on entry each row's last column in the pattern (≥ the
     /// row), grown to the last column each row can reach; @p column_top:
     /// U's first nonzero row of each column. Returns the multiply-adds

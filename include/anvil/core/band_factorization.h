@@ -65,6 +65,9 @@ namespace anvil
     std::vector<int>    column_top;  // first nonzero row of U's column j
     std::vector<std::size_t> position;   // the pattern's k-th entry in band
     std::vector<int>    pattern_row_end; // each row's last column in the pattern
+    /// L's column j cannot reach below the last row whose pattern starts at
+    /// or left of column j: that row − j (fill and exchanges stay above it).
+    std::vector<int>    column_reach;
     std::vector<int>    row_end;         // the same, grown by the elimination
     double              envelope_flops = 0;
   };
