@@ -85,14 +85,12 @@ namespace anvil
    * cell count and vertex print (an "anvil-mesh" line after deal.II's in the
    * info file) before reading the cell data.
    *
-   * load() reads every process's cell data from where save() wrote it:
-   * deal.II 9.4's fullydistributed::Triangulation::save() writes process r's
-   * cells at the offset 4 * (cells of processes < r) (the cell count scaled by
-   * sizeof(unsigned int)), but its load() reads every process's from offset 0:
-   * on two processes, process 1 got process 0's states (plastic_block's
-   * reaction 17.10 against 11.58 after a restart). Measured on the files
-   * (tests/partition_per_body.py, restart on 2 processes). Checkpoints written
-   * with the description (before session 18) load the same way.
+   * Process r's cell data sit right after those of processes < r (deal.II
+   * 9.4's save() wrote them 4 times further on, at 4 * (cells of processes
+   * < r), the cell count scaled by sizeof(unsigned int), and its load() read
+   * every process's from offset 0: on two processes, process 1 got process
+   * 0's states; plastic_block's reaction 17.10 against 11.58 after a
+   * restart, tests/partition_per_body.py).
    */
   template <int dim>
   class PerBodyTriangulation : public dealii::parallel::fullydistributed::Triangulation<dim>
