@@ -227,7 +227,8 @@ namespace anvil
       throw InputError("Output/Restart from: the checkpoint's mesh (" + std::to_string(n_cells) +
                        " cells) is not the one this scene creates (" +
                        std::to_string(this->n_global_active_cells()) +
-                       " cells): was Geometry changed?");
+                       (n_cells == this->n_global_active_cells() ? " cells, other vertices" : " cells") +
+                       "): was Geometry changed?");
     if (n_fixed + n_variable == 0)
       return;
     this->cell_attached_data.n_attached_data_sets   = 0;
