@@ -102,7 +102,7 @@ close(again["quantities_of_interest"]["F"], full["quantities_of_interest"]["F"],
 
 state = os.path.join(ck, "state.txt")
 text = open(state).read()
-open(state, "w").write(text.replace("anvil-checkpoint 2", "anvil-checkpoint 1", 1))
+open(state, "w").write(text.replace("anvil-checkpoint 3", "anvil-checkpoint 1", 1))
 refused("tests/plastic_block.prm", heat + [ckpt], "checkpoint format 1", "a checkpoint of another format")
 open(state, "w").write("garbage\n" * 3)
 refused("tests/plastic_block.prm", heat + [ckpt], "holds no anvil checkpoint", "a garbage state file")

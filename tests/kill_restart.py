@@ -166,7 +166,7 @@ for name, scene, sets in SCENES:
     end = float([s for s in sets if s.startswith("Time/End time")][0].split("=")[1])
     status, _ = run(command(scene, halfway + ["Time/End time=%r" % (end / 2)], half, 1, False))
     os.makedirs(half + "/checkpoint.new", exist_ok=True)
-    open(half + "/checkpoint.new/state.txt", "w").write("anvil-checkpoint 2\ntime 1")
+    open(half + "/checkpoint.new/state.txt", "w").write("anvil-checkpoint 3\ntime 1")
     with open(half + "/checkpoint.new/mesh", "wb") as f:
         f.write(os.urandom(1000))
     window = half + "_window"

@@ -13,8 +13,9 @@ every body, and the answer does not depend on it.
     0's place: include/anvil/geometry/partition.h); plastic_block (J2, its
     points' states on both processes) stopped at t = 0.5 and resumed on 2
     processes ends with the uninterrupted 2-process run's reactions (1e-9).
-    On another process count, or from p4est's checkpoint, the restart is
-    refused with one line naming Output/Restart from (exit 2).
+    On another process count, on another mesh (the checkpoint holds none: the
+    scene's is checked against it), or from p4est's checkpoint, the restart
+    is refused with one line naming Output/Restart from (exit 2).
  4. A bad Geometry/Partition is one error line naming the entry (exit 2)."""
 import os
 import subprocess
@@ -85,6 +86,12 @@ def one_line(sets, np, expected, what):
 
 one_line(quiet + per_body + ["Output/Restart from=" + out_half2 + "/checkpoint", "Output/Directory=" + out_half2 + "_r1"],
          1, ["Output/Restart from", "per body", "2 processes"], "2 processes' per-body checkpoint resumed on 1")
+# A per-body checkpoint holds no mesh: the restart recreates it from the scene
+# and refuses one that is not the saved one (same cells, other vertices).
+one_line(quiet + per_body + ["Output/Restart from=" + out_half2 + "/checkpoint",
+                             "Output/Directory=" + out_half2 + "_moved",
+                             "Geometry/Blocks=lower: 0, 0, 5, 1.3, 30, 10; upper: 0, 1.3, 1.25, 2.5, 10, 10"],
+         2, ["Output/Restart from", "mesh", "Geometry"], "per-body checkpoint resumed on another mesh")
 out_p4est, _, _ = run("prm/two_blocks.prm", quiet + half, name="part_p4est_half")
 one_line(quiet + per_body + ["Output/Restart from=" + out_p4est + "/checkpoint",
                              "Output/Directory=" + out_p4est + "_pb"], 1,

@@ -122,15 +122,12 @@ namespace anvil
       }
     else
       {
-        // A fully distributed triangulation saves its cells with their
-        // (transformed) vertices; only the manifold objects are set again.
+        // Per body: the mesh as the scene creates it (a per-body checkpoint
+        // holds no mesh: include/anvil/geometry/partition.h), then the cells'
+        // data.
+        create(triangulation);
         triangulation.load(file);
-        if (type != "blocks" && type != "gmsh") // the others' curved parts
-          {
-            Triangulation<dim> serial;
-            create_serial_coarse(serial);
-            copy_manifolds(serial, triangulation);
-          }
+        return;
       }
     throw_recorded_input_error(triangulation.get_communicator());
     check_cells(triangulation);

@@ -1,7 +1,9 @@
-// Checkpoint and restart of MechanicalProblem: vectors through deal.II's
-// SolutionTransfer, material point states through data attached to the
-// triangulation's cells, so a run can resume on any number of processes.
+// Checkpoint and restart of MechanicalProblem: vectors and material point
+// states through data attached to the triangulation's cells, so a run can
+// resume on any number of processes.
 #include <deal.II/distributed/solution_transfer.h>
+
+#include <Epetra_Import.h>
 
 #include <anvil/core/instantiate.h>
 #include <anvil/mechanics/mechanical_problem.h>
@@ -33,58 +35,78 @@ namespace anvil
   template <int dim>
   void MechanicalProblem<dim>::prepare_checkpoint()
   {
-    // SolutionTransfer wants ghosted inputs.
+    // Ghosted copies of the vectors (a cell's dofs may be another process's),
+    // one layout and one import for all of them (deal.II's operator= from an
+    // owned vector builds an Epetra_Import per copy: ~9 M instructions each on
+    // two processes of the contact strip).
     const auto targets = checkpoint_targets();
-    checkpoint_vectors.clear();
-    for (const auto *v : targets)
-      {
-        checkpoint_vectors.emplace_back(locally_owned_dofs, locally_relevant_dofs, mpi_communicator);
-        checkpoint_vectors.back() = *v;
-      }
-    std::vector<const TrilinosWrappers::MPI::Vector *> inputs;
-    for (const auto &v : checkpoint_vectors)
-      inputs.push_back(&v);
-    checkpoint_transfer =
-      std::make_unique<parallel::distributed::SolutionTransfer<dim, TrilinosWrappers::MPI::Vector>>(
-        dof_handler);
-    checkpoint_transfer->prepare_for_serialization(inputs);
+    checkpoint_transfer.reset();
+    checkpoint_vectors.assign(1, TrilinosWrappers::MPI::Vector(locally_owned_dofs, locally_relevant_dofs,
+                                                               mpi_communicator));
+    checkpoint_vectors.resize(targets.size(), checkpoint_vectors[0]);
+    const Epetra_BlockMap &source = targets[0]->trilinos_vector().Map();
+    const Epetra_Import    import(checkpoint_vectors[0].trilinos_vector().Map(), source);
+    for (unsigned int i = 0; i < targets.size(); ++i)
+      if (targets[i]->trilinos_vector().Map().SameAs(source))
+        {
+          const int ierr =
+            checkpoint_vectors[i].trilinos_vector().Import(targets[i]->trilinos_vector(), import, Insert);
+          AssertThrow(ierr == 0, ExcMessage("prepare_checkpoint: Epetra import failed"));
+        }
+      else
+        checkpoint_vectors[i] = *targets[i];
 
-    // Material points: per cell, n_q blocks of (size, values).
-    const unsigned int n_q = quadrature.size();
-    auto &tria = const_cast<parallel::DistributedTriangulationBase<dim> &>(triangulation);
+    // One block per owned cell (checkpoint format 3): the cell's dof values
+    // of each vector in checkpoint_targets() order, per point (size, state),
+    // the points' temperatures at the end of their last step (heat scenes).
+    // Packed here, each state saved once; deal.II's SolutionTransfer packed
+    // nine vectors of dealii::Vector through boost per cell (~18 k
+    // instructions a cell: 569 M on one process of the contact strip).
+    const unsigned int n_q = quadrature.size(), n_dofs = fe.n_dofs_per_cell();
+    auto blocks = std::make_shared<std::vector<double>>();
+    auto where  = std::make_shared<std::vector<std::pair<std::size_t, std::size_t>>>(
+      triangulation.n_active_cells());
+    std::size_t                          longest = 0;
+    std::vector<types::global_dof_index> dofs(n_dofs);
+    std::vector<int>                     lids(n_dofs);
+    const Epetra_BlockMap               &ghosted = checkpoint_vectors[0].trilinos_vector().Map();
+    for (const auto &cell : dof_handler.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          const std::size_t begin = blocks->size();
+          cell->get_dof_indices(dofs);
+          for (unsigned int j = 0; j < n_dofs; ++j)
+            lids[j] = ghosted.LID(static_cast<TrilinosWrappers::types::int_type>(dofs[j]));
+          for (const auto &v : checkpoint_vectors)
+            {
+              const double *const values = v.trilinos_vector()[0];
+              for (unsigned int j = 0; j < n_dofs; ++j)
+                blocks->push_back(values[lids[j]]);
+            }
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              const auto state = points(cell, q)->save_state();
+              blocks->push_back(state.size());
+              blocks->insert(blocks->end(), state.begin(), state.end());
+            }
+          for (unsigned int q = 0; q < n_q; ++q)
+            blocks->push_back(material_temperature_old(cell, q));
+          (*where)[cell->active_cell_index()] = {begin, blocks->size() - begin};
+          longest = std::max(longest, blocks->size() - begin);
+        }
+    checkpoint_vectors.clear(); // packed: not held through the run
     // A fully distributed triangulation (Geometry/Partition = per body) saves
     // only fixed-size data (deal.II 9.4): every cell's block is padded to the
-    // largest one, which its sizes make self-describing on reading.
-    const bool         fixed = !is_p4est(triangulation);
-    std::size_t        padded = 0;
-    if (fixed)
-      {
-        for (const auto &cell : triangulation.active_cell_iterators())
-          if (cell->is_locally_owned())
-            {
-              std::size_t n = 2 * n_q;
-              for (unsigned int q = 0; q < n_q; ++q)
-                n += points(cell, q)->save_state().size();
-              padded = std::max(padded, n);
-            }
-        padded = Utilities::MPI::max(padded, mpi_communicator);
-      }
+    // longest one, which its sizes make self-describing on reading.
+    auto &tria = const_cast<parallel::DistributedTriangulationBase<dim> &>(triangulation);
+    const bool        fixed  = !is_p4est(triangulation);
+    const std::size_t padded = fixed ? Utilities::MPI::max(longest, mpi_communicator) : 0;
     checkpoint_handle = tria.register_data_attach(
-      [this, n_q, padded](const typename Triangulation<dim>::cell_iterator &cell,
-                          const typename Triangulation<dim>::CellStatus) {
-        std::vector<double> data;
-        for (unsigned int q = 0; q < n_q; ++q)
-          {
-            const auto state = points(cell, q)->save_state();
-            data.push_back(state.size());
-            data.insert(data.end(), state.begin(), state.end());
-          }
-        // The temperature each point ended its last step at (heat scenes).
-        for (unsigned int q = 0; q < n_q; ++q)
-          data.push_back(material_temperature_old(cell, q));
-        data.resize(std::max(data.size(), padded), 0.);
-        std::vector<char> bytes(data.size() * sizeof(double));
-        std::memcpy(bytes.data(), data.data(), bytes.size());
+      [blocks, where, padded](const typename Triangulation<dim>::cell_iterator &cell,
+                              const typename Triangulation<dim>::CellStatus) {
+        const auto [begin, length] = (*where)[cell->active_cell_index()];
+        std::vector<char> bytes(std::max(length, padded) * sizeof(double), 0);
+        std::memcpy(bytes.data(), blocks->data() + begin, length * sizeof(double));
         return bytes;
       },
       /*returns_variable_size_data=*/!fixed);
@@ -93,28 +115,39 @@ namespace anvil
   template <int dim>
   void MechanicalProblem<dim>::load_checkpoint()
   {
-    const auto targets = checkpoint_targets();
-    std::vector<TrilinosWrappers::MPI::Vector *> outputs(targets.begin(), targets.end());
-    parallel::distributed::SolutionTransfer<dim, TrilinosWrappers::MPI::Vector> transfer(dof_handler);
-    transfer.deserialize(outputs);
-
-    const unsigned int n_q  = quadrature.size();
+    const auto         targets = checkpoint_targets();
+    const unsigned int n_q = quadrature.size(), n_dofs = fe.n_dofs_per_cell();
     auto              &tria = const_cast<parallel::DistributedTriangulationBase<dim> &>(triangulation);
-    // Attached data sets are identified by the order of registration: the
-    // SolutionTransfer registered first (at save and in deserialize()), ours
-    // second, so registering again yields our handle.
+    // Attached data sets are identified by the order of registration: ours
+    // is the first (the heat's follows), so registering again yields its handle.
     const unsigned int handle = tria.register_data_attach(
       [](const typename Triangulation<dim>::cell_iterator &,
          const typename Triangulation<dim>::CellStatus) { return std::vector<char>(); },
       /*returns_variable_size_data=*/is_p4est(triangulation));
+    std::vector<types::global_dof_index> dofs(n_dofs);
     tria.notify_ready_to_unpack(
       handle,
-      [this, n_q](const typename Triangulation<dim>::cell_iterator &cell,
-                  const typename Triangulation<dim>::CellStatus,
-                  const boost::iterator_range<std::vector<char>::const_iterator> &bytes) {
+      [&, n_q, n_dofs](const typename Triangulation<dim>::cell_iterator &cell,
+                       const typename Triangulation<dim>::CellStatus,
+                       const boost::iterator_range<std::vector<char>::const_iterator> &bytes) {
         std::vector<double> data(std::distance(bytes.begin(), bytes.end()) / sizeof(double));
         std::memcpy(data.data(), &*bytes.begin(), data.size() * sizeof(double));
+        AssertThrow(data.size() >= targets.size() * n_dofs, ExcMessage("checkpoint: a cell's block is short"));
+        // The owned dofs of the owned cells: every owned dof is on one of them.
+        typename DoFHandler<dim>::active_cell_iterator(&triangulation, cell->level(), cell->index(), &dof_handler)
+          ->get_dof_indices(dofs);
         std::size_t k = 0;
+        for (auto *v : targets)
+          {
+            const Epetra_BlockMap &map    = v->trilinos_vector().Map();
+            double *const          values = v->trilinos_vector()[0];
+            for (unsigned int j = 0; j < n_dofs; ++j, ++k)
+              {
+                const int lid = map.LID(static_cast<TrilinosWrappers::types::int_type>(dofs[j]));
+                if (lid >= 0)
+                  values[lid] = data[k];
+              }
+          }
         for (unsigned int q = 0; q < n_q; ++q)
           {
             const std::size_t   size = static_cast<std::size_t>(data.at(k++));

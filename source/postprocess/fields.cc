@@ -1,6 +1,7 @@
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_q.h>
+#include <deal.II/lac/la_parallel_vector.h>
 #include <deal.II/lac/trilinos_vector.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/base/geometry_info.h>
@@ -40,6 +41,8 @@ namespace anvil
     static void declare_parameters(ParameterHandler &prm) { FieldSchedule::declare_parameters(prm); }
 
   private:
+    using NodalVector = LinearAlgebra::distributed::Vector<double>;
+
     void write(const SimulationState<dim> &s) override
     {
       const auto  *mechanical = s.physics.mechanics();
@@ -109,7 +112,7 @@ namespace anvil
     std::vector<unsigned int>            cell_index;   // per piece cell, its active cell index
     std::vector<types::global_dof_index> vertex_dofs;  // per piece point, the dim displacement dofs
     std::vector<types::global_dof_index> heat_dofs;    // per piece point (heat field)
-    std::vector<types::global_dof_index> nodal_vertex; // per piece point (nodal_dofs)
+    std::vector<unsigned int>            nodal_vertex; // per piece point, its nodal vector's local index
 
     void prepare_raw(const SimulationState<dim> &s)
     {
@@ -136,10 +139,10 @@ namespace anvil
                   piece.points.push_back(d < dim ? static_cast<float>(cell->vertex(v)[d]) : 0.f);
                 for (unsigned int c = 0; c < dim; ++c)
                   vertex_dofs.push_back(cell->vertex_dof_index(v, c));
-                nodal_vertex.push_back(
+                nodal_vertex.push_back(nodal_partitioner->global_to_local(
                   typename DoFHandler<dim>::active_cell_iterator(&s.triangulation, cell->level(),
                                                                  cell->index(), &nodal_dofs)
-                    ->vertex_dof_index(v, 0));
+                    ->vertex_dof_index(v, 0)));
                 if (thermal)
                   heat_dofs.push_back(typename DoFHandler<dim>::active_cell_iterator(
                                         &s.triangulation, cell->level(), cell->index(),
@@ -155,25 +158,57 @@ namespace anvil
       raw_cells = s.triangulation.n_active_cells();
     }
 
+    /// Local indices of a dof list in one Epetra map: kept while the map's
+    /// data is the same (one map per layout: every write but the first reads
+    /// them instead of ~35 instructions of Epetra_BlockMap::LID per value).
+    struct LocalIndices
+    {
+      const Epetra_BlockMapData *map = nullptr;
+      std::vector<int>           lids;
+    };
+    LocalIndices vertex_lids, heat_lids;
+
+    const std::vector<int> &local_indices(LocalIndices &kept, const Epetra_BlockMap &map,
+                                          const std::vector<types::global_dof_index> &dofs)
+    {
+      if (kept.map != map.DataPtr() || kept.lids.size() != dofs.size())
+        {
+          kept.lids.resize(dofs.size());
+          for (std::size_t i = 0; i < dofs.size(); ++i)
+            {
+              kept.lids[i] = map.LID(static_cast<TrilinosWrappers::types::int_type>(dofs[i]));
+              AssertThrow(kept.lids[i] >= 0, ExcMessage("Fields: a vertex value is not on this process"));
+            }
+          kept.map = map.DataPtr();
+        }
+      return kept.lids;
+    }
+
     /// An array of @p components values per point from the ghosted vector
     /// @p v at @p dofs (components per point).
     void add_dof_array(const std::string &name, const TrilinosWrappers::MPI::Vector &v,
-                       const std::vector<types::global_dof_index> &dofs,
+                       const std::vector<types::global_dof_index> &dofs, LocalIndices &kept,
                        const unsigned int components, const unsigned int width)
     {
       auto &a      = piece.point_data.emplace_back();
       a.name       = name;
       a.components = width;
       a.values.assign(piece.n_points() * width, 0.f);
-      const Epetra_BlockMap &map    = v.trilinos_vector().Map();
-      const double *const    values = v.trilinos_vector()[0];
+      const std::vector<int> &lids   = local_indices(kept, v.trilinos_vector().Map(), dofs);
+      const double *const     values = v.trilinos_vector()[0];
       for (std::size_t p = 0; p < piece.n_points(); ++p)
         for (unsigned int c = 0; c < components; ++c)
-          {
-            const int lid = map.LID(static_cast<TrilinosWrappers::types::int_type>(dofs[p * components + c]));
-            AssertThrow(lid >= 0, ExcMessage("Fields: a vertex value is not on this process"));
-            a.values[p * width + c] = static_cast<float>(values[lid]);
-          }
+          a.values[p * width + c] = static_cast<float>(values[lids[p * components + c]]);
+    }
+
+    /// A point array from the ghosted nodal vector @p v at the local indices @p local.
+    void add_nodal_array(const std::string &name, const NodalVector &v, const std::vector<unsigned int> &local)
+    {
+      auto &a = piece.point_data.emplace_back();
+      a.name  = name;
+      a.values.resize(piece.n_points());
+      for (std::size_t p = 0; p < local.size(); ++p)
+        a.values[p] = static_cast<float>(v.local_element(local[p]));
     }
 
     /// A cell array: each cell's value at each of its vertices.
@@ -197,13 +232,13 @@ namespace anvil
       recover(s, cell_fields); // before prepare_raw: it makes nodal_dofs
       prepare_raw(s);
       piece.point_data.clear();
-      add_dof_array("displacement", mechanical->displacement(), vertex_dofs, dim, 3);
+      add_dof_array("displacement", mechanical->displacement(), vertex_dofs, vertex_lids, dim, 3);
       if (mechanical->is_dynamic())
-        add_dof_array("velocity", mechanical->velocity(), vertex_dofs, dim, 3);
+        add_dof_array("velocity", mechanical->velocity(), vertex_dofs, vertex_lids, dim, 3);
       if (thermal)
-        add_dof_array("temperature", thermal->temperature(), heat_dofs, 1, 1);
+        add_dof_array("temperature", thermal->temperature(), heat_dofs, heat_lids, 1, 1);
       for (unsigned int i = 0; i < nodal_names.size(); ++i)
-        add_dof_array(nodal_names[i], nodal_values[i], nodal_vertex, 1, 1);
+        add_nodal_array(nodal_names[i], nodal_values[i], nodal_vertex);
       if (!thermal && s.physics.has_temperature())
         add_cell_array("temperature", s.physics.cell_temperature());
       for (unsigned int i = 0; i < cell_fields.names.size(); ++i)
@@ -240,19 +275,25 @@ namespace anvil
     // values of the cells around it, on every process the same (the sums
     // over cells of other processes arrive through compress(add)). Across a
     // material interface the average smears what the cell values keep sharp.
-    DoFHandler<dim>                            nodal_dofs;
-    FE_Q<dim>                                  nodal_fe{1};
-    std::vector<std::string>                   nodal_names;
-    std::vector<TrilinosWrappers::MPI::Vector> nodal_values;
+    DoFHandler<dim>          nodal_dofs;
+    FE_Q<dim>                nodal_fe{1};
+    std::vector<std::string> nodal_names;
+    std::vector<NodalVector> nodal_values; // ghosted
 
-    // The nodal numbering, the index sets and each vertex's patch volume
-    // depend on the mesh only (the volumes are the reference cells'), so they
-    // are made at the first write and kept while the mesh is the same.
-    const Triangulation<dim>     *nodal_mesh = nullptr;
-    unsigned int                  nodal_cells = 0;
-    IndexSet                      nodal_owned, nodal_relevant;
-    TrilinosWrappers::MPI::Vector patch_volume; // Σ of the cell volumes around each vertex (owned)
-    std::vector<double>           cell_volume;  // by active cell index, owned cells
+    // The nodal numbering, its partitioner, each owned cell's vertex dofs (as
+    // local indices) and volume and each vertex's patch volume depend on the
+    // mesh only (the volumes are the reference cells'), so they are made at
+    // the first write and kept while the mesh is the same; so are the
+    // vectors. (Trilinos vectors built per write and field cost ~11 M
+    // instructions each on two processes, their maps and imports made anew:
+    // ~0.9 G per process for the contact strip's two writes.)
+    const Triangulation<dim>                             *nodal_mesh  = nullptr;
+    unsigned int                                          nodal_cells = 0;
+    std::shared_ptr<const Utilities::MPI::Partitioner>    nodal_partitioner;
+    std::vector<unsigned int>                             nodal_cell_dofs; // per owned cell, its vertices' local indices
+    std::vector<double>                                   nodal_cell_volume; // per owned cell
+    std::vector<unsigned int>                             nodal_cell_index;  // per owned cell, its active cell index
+    NodalVector                                           patch_volume; // Σ of the cell volumes around each vertex
 
     void prepare_nodal_dofs(const SimulationState<dim> &s)
     {
@@ -261,25 +302,29 @@ namespace anvil
       nodal_values.clear(); // their layout was the old mesh's
       nodal_dofs.reinit(s.triangulation);
       nodal_dofs.distribute_dofs(nodal_fe);
-      nodal_owned = nodal_dofs.locally_owned_dofs();
-      DoFTools::extract_locally_relevant_dofs(nodal_dofs, nodal_relevant);
-      TrilinosWrappers::MPI::Vector sum;
-      sum.reinit(nodal_owned, nodal_relevant, s.communicator, true);
-      cell_volume.assign(s.triangulation.n_active_cells(), 0.);
+      IndexSet relevant;
+      DoFTools::extract_locally_relevant_dofs(nodal_dofs, relevant);
+      nodal_partitioner = std::make_shared<Utilities::MPI::Partitioner>(nodal_dofs.locally_owned_dofs(),
+                                                                        relevant, s.communicator);
+      patch_volume.reinit(nodal_partitioner);
+      nodal_cell_dofs.clear();
+      nodal_cell_volume.clear();
+      nodal_cell_index.clear();
       std::vector<types::global_dof_index> dofs(nodal_fe.n_dofs_per_cell());
       for (const auto &cell : nodal_dofs.active_cell_iterators())
         if (cell->is_locally_owned())
           {
             cell->get_dof_indices(dofs);
-            const double volume = cell_volume[cell->active_cell_index()] = cell->measure();
+            const double volume = cell->measure();
+            nodal_cell_volume.push_back(volume);
+            nodal_cell_index.push_back(cell->active_cell_index());
             for (const auto d : dofs)
-              sum(d) += volume;
+              {
+                nodal_cell_dofs.push_back(nodal_partitioner->global_to_local(d));
+                patch_volume.local_element(nodal_cell_dofs.back()) += volume;
+              }
           }
-      sum.compress(VectorOperation::add);
-      patch_volume.reinit(nodal_owned, s.communicator);
-      for (const auto d : nodal_owned)
-        patch_volume(d) = sum(d);
-      patch_volume.compress(VectorOperation::insert);
+      patch_volume.compress(VectorOperation::add);
       nodal_mesh  = &s.triangulation;
       nodal_cells = s.triangulation.n_active_cells();
     }
@@ -296,32 +341,29 @@ namespace anvil
             which.push_back(i);
             nodal_names.push_back(fields.names[i] + "_nodal");
           }
-      // Writable with ghost entries: sums of cell contributions, then compress(add).
-      std::vector<TrilinosWrappers::MPI::Vector> sums(which.size());
-      for (auto &v : sums)
-        v.reinit(nodal_owned, nodal_relevant, s.communicator, true);
-      std::vector<types::global_dof_index> dofs(nodal_fe.n_dofs_per_cell());
-      for (const auto &cell : nodal_dofs.active_cell_iterators())
-        if (cell->is_locally_owned())
-          {
-            cell->get_dof_indices(dofs);
-            const double volume = cell_volume[cell->active_cell_index()];
-            for (const auto d : dofs)
-              for (unsigned int k = 0; k < which.size(); ++k)
-                sums[k](d) += volume * fields.values[which[k]][cell->active_cell_index()];
-          }
-      for (auto &v : sums)
-        v.compress(VectorOperation::add);
       nodal_values.resize(which.size());
+      const unsigned int n_vertices = nodal_fe.n_dofs_per_cell();
+      const unsigned int n_owned    = nodal_partitioner->locally_owned_size();
       for (unsigned int k = 0; k < which.size(); ++k)
         {
-          TrilinosWrappers::MPI::Vector mean(nodal_owned, s.communicator);
-          for (const auto d : nodal_owned)
-            mean(d) = sums[k](d) / patch_volume(d);
-          mean.compress(VectorOperation::insert);
-          if (nodal_values[k].size() == 0)
-            nodal_values[k].reinit(nodal_owned, nodal_relevant, s.communicator);
-          nodal_values[k] = mean;
+          // Sums of cell contributions (ghost entries included), compress(add),
+          // then the owned means, then the ghosts' values from their owners.
+          NodalVector &v = nodal_values[k];
+          if (v.size() == 0)
+            v.reinit(nodal_partitioner);
+          else
+            v = 0.;
+          const auto &values = fields.values[which[k]];
+          for (std::size_t c = 0; c < nodal_cell_index.size(); ++c)
+            {
+              const double contribution = nodal_cell_volume[c] * values[nodal_cell_index[c]];
+              for (unsigned int j = 0; j < n_vertices; ++j)
+                v.local_element(nodal_cell_dofs[c * n_vertices + j]) += contribution;
+            }
+          v.compress(VectorOperation::add);
+          for (unsigned int i = 0; i < n_owned; ++i)
+            v.local_element(i) = v.local_element(i) / patch_volume.local_element(i);
+          v.update_ghost_values();
         }
     }
   };

@@ -26,7 +26,9 @@ namespace anvil
     // state.txt: a header line with the format version, then one named entry
     // per line ("key value..."), then the contact state after a "contact" line.
     // A new entry is a new key: restarts read by name, never by position.
-    constexpr int checkpoint_format = 2;
+    // Format 3 (session 18): the mechanics' vectors packed with its points
+    // per cell, not through deal.II's SolutionTransfer.
+    constexpr int checkpoint_format = 3;
     const char   *checkpoint_magic  = "anvil-checkpoint";
 
     // Size and FNV-1a hash of a file: a checkpoint's mesh files damaged or cut

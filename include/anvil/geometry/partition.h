@@ -71,14 +71,26 @@ namespace anvil
 
   /**
    * The fully distributed triangulation of Geometry/Partition = per body, with
-   * a load() that reads every process's cell-attached data (the checkpoint's
-   * vectors, material points, temperatures) from where save() wrote it.
-   * deal.II 9.4's fullydistributed::Triangulation::save() writes process r's
-   * cells at the offset 4 * (cells of processes < r) (the cell count scaled by
-   * sizeof(unsigned int)), but its load() reads every process's from offset 0:
-   * on two processes, process 1 got process 0's states (plastic_block's
-   * reaction 17.10 against 11.58 after a restart). Measured on the files
-   * (tests/partition_per_body.py, restart on 2 processes).
+   * its own save() and load() of the checkpoint's cell-attached data (vectors,
+   * material points, temperatures).
+   *
+   * save() writes deal.II 9.4's info and cell-data files as its
+   * fullydistributed::Triangulation::save() does, but not the triangulation
+   * description: deal.II rebuilt it from the mesh and serialised it through
+   * boost at every checkpoint (~340 M instructions on one process of the
+   * contact strip, ~245 M per process on two, whatever the share). The mesh
+   * never changes in a run and a per-body checkpoint restarts only on as many
+   * processes as wrote it, so load() takes the mesh the scene creates (the
+   * same cells on the same processes) and checks it against the saved one's
+   * cell count and vertex print (an "anvil-mesh" line after deal.II's in the
+   * info file) before reading the cell data.
+   *
+   * Process r's cell data sit right after those of processes < r (deal.II
+   * 9.4's save() wrote them 4 times further on, at 4 * (cells of processes
+   * < r), the cell count scaled by sizeof(unsigned int), and its load() read
+   * every process's from offset 0: on two processes, process 1 got process
+   * 0's states; plastic_block's reaction 17.10 against 11.58 after a
+   * restart, tests/partition_per_body.py).
    */
   template <int dim>
   class PerBodyTriangulation : public dealii::parallel::fullydistributed::Triangulation<dim>
@@ -86,6 +98,8 @@ namespace anvil
   public:
     using dealii::parallel::fullydistributed::Triangulation<dim>::Triangulation;
     using dealii::parallel::fullydistributed::Triangulation<dim>::load;
+    void save(const std::string &filename) const override;
+    /// Read the cell data of a checkpoint into this (created) mesh.
     void load(const std::string &filename) override;
   };
 } // namespace anvil
