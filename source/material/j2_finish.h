@@ -86,6 +86,16 @@ namespace anvil
       PerzynaLaw::Value   &V = t.V;
       const HardeningLaw::Value &Y_start = t.Y_start;
       response.return_iterations = t.return_iterations;
+      {
+        // The heat sources first: what they need is then not kept (on the
+        // stack) through the stress and the tangent.
+        const double dt = inc.time_step, work = t.work;
+        response.plastic_work_rate        = work / dt;
+        response.plastic_dissipation_rate = el.taylor_quinney * work / dt;
+        // Ẇthel = −3Kβ T tr(Δεᵉ)/Δt (plastic flow is isochoric), doc/thermodynamics.md.
+        response.thermoelastic_heating_rate      = -3 * K * beta * T * t.tr_rev / dt;
+        response.adiabatic_temperature_increment = t.adiabatic_temperature_increment;
+      }
       if (t.linear_return && (request & request_temperature_derivative))
         {
           HardeningLaw::Value y = yield(eps_n + dp, T);
@@ -170,13 +180,7 @@ namespace anvil
           response.stress_temperature_derivative = ds;
         }
 
-      const double dt   = inc.time_step;
-      const double work = t.work, tr_rev = t.tr_rev, rho_c = t.rho_c;
-      response.plastic_work_rate        = work / dt;
-      response.plastic_dissipation_rate = el.taylor_quinney * work / dt;
-      // Ẇthel = −3Kβ T tr(Δεᵉ)/Δt (plastic flow is isochoric), doc/thermodynamics.md.
-      response.thermoelastic_heating_rate      = -3 * K * beta * T * tr_rev / dt;
-      response.adiabatic_temperature_increment = t.adiabatic_temperature_increment;
+      const double tr_rev = t.tr_rev, rho_c = t.rho_c;
       if (inc.adiabatic && (request & request_tangent))
         {
           // Partial derivatives of ΔT_ad at fixed T: ∂q_tr/∂Δε = √6 G n,

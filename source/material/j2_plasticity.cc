@@ -98,10 +98,12 @@ namespace anvil
     {
       response.volume_ratio_sensitivity = SymmetricTensor<2, 3>();
       Rotated rotated = rotate(increment.rotation_increment);
-      Trial   t;
+      // First: the rotated σₙ's lower entries are not kept alive (on the stack)
+      // through the return map.
+      keep_for_audit(increment, rotated);
+      Trial t;
       evaluate(increment, increment.temperature, increment.temperature_increment, rotated, t);
       finish(increment, request, t, response);
-      keep_for_audit(increment, rotated);
     }
 
     // No stack canary (-fstack-protector-strong puts one in every function
