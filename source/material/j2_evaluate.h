@@ -40,15 +40,18 @@ namespace anvil
       // on the raw components (00, 11, 22, 01, 02, 12).
       double *trial = t.trial, *s = t.s, de[6];
       const double *dstrain = inc.strain_increment.begin_raw();
+      #pragma GCC unroll 6
       for (unsigned int c = 0; c < 6; ++c)
         de[c] = dstrain[c] - (c < 3 ? eth : 0.);
       const double tr_de   = de[0] + de[1] + de[2];
       const double mean_de = tr_de / 3;
       t.tr_de              = tr_de;
       // σ̃ₙ + H : Δεᵉ in one pass (a copy first became a memmove call).
+      #pragma GCC unroll 6
       for (unsigned int c = 0; c < 6; ++c)
         trial[c] = rotated.trial[c] + (c < 3 ? K * tr_de + 2 * G * (de[c] - mean_de) : 2 * G * de[c]);
       const double mean_trial = (trial[0] + trial[1] + trial[2]) / 3;
+      #pragma GCC unroll 6
       for (unsigned int c = 0; c < 6; ++c) // dev(trial)
         s[c] = c < 3 ? trial[c] - mean_trial : trial[c];
       const double norm2 = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] +
@@ -57,14 +60,16 @@ namespace anvil
       // pass: the square root is the longest latency of the elastic update.
       double norm_s = 0, q_trial = 0;
 
-      double               dp = 0, H = 0;
-      HardeningLaw::Value &Y = t.Y, &Y_start = t.Y_start;
-      PerzynaLaw::Value   &V = t.V;
-      PerzynaLaw::Rate    &rate = t.rate;
+      double       dp = 0, H = 0;
       // Y, Y_start, V and rate are read only after a plastic return (dp > 0),
-      // which sets them.
-      t.linear_return     = false;
-      t.return_iterations = 0;
+      // which sets them. Locals, copied into t at the end: no address of t's
+      // is passed to a call (return_map(), the laws' returns by value), so t
+      // stays in registers (its fields were stored and reloaded).
+      HardeningLaw::Value Y, Y_start;
+      PerzynaLaw::Value   V;
+      PerzynaLaw::Rate    rate;
+      bool                linear_return = false;
+      unsigned int        iterations    = 0;
       if (model.plastic)
         {
           Y = Y_start = yield(eps_n, T);
@@ -82,7 +87,10 @@ namespace anvil
           if (q_trial > Y.stress)
             {
               if (model.viscosity.active())
-                rate = model.viscosity.at(T, inc.time_step);
+                {
+                  PerzynaLaw::Rate r = model.viscosity.at(T, inc.time_step);
+                  rate                     = r;
+                }
               else
                 rate.dt = inc.time_step;
               const J2Model::Kernel &k = model.kernel();
@@ -97,18 +105,28 @@ namespace anvil
                         throw no_plastic_solution(T);
                     }
                   dp                  = (q_trial - Y_start.stress) / (3 * G + h);
-                  V                   = PerzynaLaw::Value();
-                  t.return_iterations = 1;
-                  t.linear_return     = true;
+                  V             = PerzynaLaw::Value();
+                  iterations    = 1;
+                  linear_return = true;
                   // (∂σᵥ/∂T at the end of the step: finish(), if asked.)
                   Y.stress = Y_start.stress + h * dp;
                 }
               else
-                dp = return_map(q_trial, G, T, rate, Y_start, t.return_iterations, Y, V);
+                {
+                  const PerzynaLaw::Rate    r  = rate;
+                  const HardeningLaw::Value Y0 = Y_start;
+                  HardeningLaw::Value       Yr;
+                  PerzynaLaw::Value         Vr;
+                  unsigned int              its = 0;
+                  dp = return_map(q_trial, G, T, r, Y0, its, Yr, Vr);
+                  Y = Yr, V = Vr, iterations = its;
+                }
               H = Y.slope + V.derivative;
             }
         }
       t.norm_s = norm_s, t.q_trial = q_trial, t.dp = dp, t.H = H;
+      t.Y = Y, t.Y_start = Y_start, t.V = V, t.rate = rate;
+      t.linear_return = linear_return, t.return_iterations = iterations;
 
       // Heat sources over the step (always cheap; needed by the adiabatic loop).
       double work = 0, dwork_dq = 0;

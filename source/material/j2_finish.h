@@ -40,6 +40,7 @@ namespace anvil
                 const double a = 3 * G * dp / q_trial, b = 3 * G / (3 * G + H);
                 f.deviatoric = 2 * G * (1 - a), f.normal = 2 * G * (a - b);
                 f.sensitivity_deviatoric = a, f.sensitivity_normal = a - b;
+                #pragma GCC unroll 6
                 for (unsigned int c = 0; c < 6; ++c)
                   f.n[c] = n[c];
                 response.sensitivity_is_identity = false;
@@ -85,8 +86,21 @@ namespace anvil
       PerzynaLaw::Value   &V = t.V;
       const HardeningLaw::Value &Y_start = t.Y_start;
       response.return_iterations = t.return_iterations;
+      {
+        // The heat sources first: what they need is then not kept (on the
+        // stack) through the stress and the tangent.
+        const double dt = inc.time_step, work = t.work;
+        response.plastic_work_rate        = work / dt;
+        response.plastic_dissipation_rate = el.taylor_quinney * work / dt;
+        // Ẇthel = −3Kβ T tr(Δεᵉ)/Δt (plastic flow is isochoric), doc/thermodynamics.md.
+        response.thermoelastic_heating_rate      = -3 * K * beta * T * t.tr_rev / dt;
+        response.adiabatic_temperature_increment = t.adiabatic_temperature_increment;
+      }
       if (t.linear_return && (request & request_temperature_derivative))
-        Y = yield(eps_n + dp, T);
+        {
+          HardeningLaw::Value y = yield(eps_n + dp, T);
+          Y                           = y;
+        }
 
       // Radial return: σ = trial − √6 G Δε̄ n, n = s/|s|.
       // n enters only through Δε̄ > 0 terms (elastic: zero, as for |s| = 0).
@@ -94,20 +108,24 @@ namespace anvil
       if (dp > 0)
         {
           const double inv_norm = 1 / norm_s;
+          #pragma GCC unroll 6
           for (unsigned int c = 0; c < 6; ++c)
             n[c] = s[c] * inv_norm;
         }
       else
+        #pragma GCC unroll 6
         for (unsigned int c = 0; c < 6; ++c)
           n[c] = 0;
       double *sigma = response.stress.begin_raw();
       if (dp > 0)
         {
           const double radial = std::sqrt(6.) * G * dp;
+          #pragma GCC unroll 6
           for (unsigned int c = 0; c < 6; ++c)
             sigma[c] = trial[c] - radial * n[c];
         }
       else
+        #pragma GCC unroll 6
         for (unsigned int c = 0; c < 6; ++c)
           sigma[c] = trial[c];
       current = response.stress;
@@ -130,8 +148,10 @@ namespace anvil
             const double k_tr = K * tr_de, two_G = 2 * G, th = 3 * K * deth;
             const double mean = (de[0] + de[1] + de[2]) / 3; // deviator(): trace / dim
             double      *d    = dtrial.begin_raw();
+            #pragma GCC unroll 6
             for (unsigned int c = 0; c < 3; ++c)
               d[c] = g * (k_tr * 1. + (de[c] - mean) * two_G) - th * 1.;
+            #pragma GCC unroll 6
             for (unsigned int c = 3; c < 6; ++c)
               d[c] = g * (k_tr * 0. + de[c] * two_G) - th * 0.;
           }
@@ -139,13 +159,17 @@ namespace anvil
           if (dp > 0)
             {
               SymmetricTensor<2, 3> n_t;
+              #pragma GCC unroll 6
               for (unsigned int c = 0; c < 6; ++c)
                 n_t.access_raw_entry(c) = n[c];
               // Johnson-Cook: V = σ_h C ln(ε̄̇/ε̇₀), so ∂V/∂T = (V/σ_h) ∂σ_h/∂T.
               V.temperature_derivative =
                 model.johnson_cook_rate.active() ?
                   (Y.stress > 0 ? V.stress / Y.stress * Y.temperature_derivative : 0.) :
-                  model.viscosity.temperature_derivative(t.rate, T, eps_c, dp, V.stress);
+                  [&] {
+                    const PerzynaLaw::Rate rate = t.rate; // (t's address not passed)
+                    return model.viscosity.temperature_derivative(rate, T, eps_c, dp, V.stress);
+                  }();
               const double dG  = g * G;
               const double dq  = std::sqrt(1.5) * (n_t * dtrial);
               const double ddp = (dq - 3 * dG * dp - Y.temperature_derivative -
@@ -156,18 +180,13 @@ namespace anvil
           response.stress_temperature_derivative = ds;
         }
 
-      const double dt   = inc.time_step;
-      const double work = t.work, tr_rev = t.tr_rev, rho_c = t.rho_c;
-      response.plastic_work_rate        = work / dt;
-      response.plastic_dissipation_rate = el.taylor_quinney * work / dt;
-      // Ẇthel = −3Kβ T tr(Δεᵉ)/Δt (plastic flow is isochoric), doc/thermodynamics.md.
-      response.thermoelastic_heating_rate      = -3 * K * beta * T * tr_rev / dt;
-      response.adiabatic_temperature_increment = t.adiabatic_temperature_increment;
+      const double tr_rev = t.tr_rev, rho_c = t.rho_c;
       if (inc.adiabatic && (request & request_tangent))
         {
           // Partial derivatives of ΔT_ad at fixed T: ∂q_tr/∂Δε = √6 G n,
           // ∂q_tr/∂σ̃ₙ = √(3/2) n, ∂tr_rev/∂Δε = I.
           SymmetricTensor<2, 3> n_t;
+          #pragma GCC unroll 6
           for (unsigned int c = 0; c < 6; ++c)
             n_t.access_raw_entry(c) = n[c];
           const double chi = el.taylor_quinney;
@@ -189,6 +208,7 @@ namespace anvil
               double de[6];
               elastic_strain_increment(inc, t, de);
               double n_de = 0;
+              #pragma GCC unroll 6
               for (unsigned int c = 0; c < 6; ++c)
                 n_de += (c < 3 ? 1. : 2.) * n[c] * de[c];
               const double dG       = g * G;

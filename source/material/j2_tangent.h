@@ -55,15 +55,19 @@ namespace anvil
           const double f   = with_n ? cn * n[p] : 0.;
           if (p < 3)
             {
+              #pragma GCC unroll 6
               for (unsigned int q = 0; q < 3; ++q)
                 row[q] = (p == q ? diag : off) + (with_n ? f * n[q] : 0.);
+              #pragma GCC unroll 6
               for (unsigned int q = 3; q < 6; ++q)
                 row[q] = with_n ? f * n[q] : 0.;
             }
           else
             {
+              #pragma GCC unroll 6
               for (unsigned int q = 0; q < 3; ++q)
                 row[q] = with_n ? f * n[q] : 0.;
+              #pragma GCC unroll 6
               for (unsigned int q = 3; q < 6; ++q)
                 row[q] = (p == q ? 0.5 * cd : 0.) + (with_n ? f * n[q] : 0.);
             }
@@ -83,15 +87,19 @@ namespace anvil
           const double f   = c * n[p];
           if (p < 3)
             {
+              #pragma GCC unroll 6
               for (unsigned int q = 0; q < 3; ++q)
                 row[q] = (p == q ? diag : off) + f * n[q];
+              #pragma GCC unroll 6
               for (unsigned int q = 3; q < 6; ++q)
                 row[q] = f * n[q];
             }
           else
             {
+              #pragma GCC unroll 6
               for (unsigned int q = 0; q < 3; ++q)
                 row[q] = f * n[q];
+              #pragma GCC unroll 6
               for (unsigned int q = 3; q < 6; ++q)
                 row[q] = (p == q ? shear : 0.) + f * n[q];
             }
