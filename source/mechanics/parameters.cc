@@ -99,8 +99,8 @@ namespace anvil
     prm.declare_entry("Maximum iterations", "1000", Patterns::Integer(1),
                       "Iterations of the iterative solver before the step is cut back.");
     prm.declare_entry("GMRES restart", "28", Patterns::Integer(1, 1000),
-                      "Krylov vectors GMRES keeps before it restarts (each 8 bytes per DoF; "
-                      "a restart slows convergence: doc/linear_solver.md).");
+                      "GMRES iterations before a restart (it keeps that many Krylov vectors + 2, "
+                      "8 bytes per DoF each; 28 is deal.II's default; doc/linear_solver.md).");
     prm.declare_entry("AMG rebuild growth", "0", Patterns::Double(0),
                       "0: build the AMG hierarchy for every solve. g > 0: keep it across Newton "
                       "iterations and steps, giving the kept one g times the Krylov iterations of "
