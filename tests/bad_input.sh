@@ -34,6 +34,12 @@ expect "bad --set value"    "--set 'Time/End time=soon'"                   "$anv
 expect "malformed --set"    "expected 'Section/Subsection/Entry=value'"     "$anvil" "$src/prm/cantilever.prm" --set "Time/End time"
 expect "bad direct solver limit" "Direct solver limit.*expected a number of DoFs >= 0 or .measured." "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/Direct solver limit=lots"
 expect "bad direct solver" "--set 'Mechanics/Linear solver/Direct solver=lu'.*auto\|klu\|band" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/Direct solver=lu"
+expect "bad AMG smoother degree" "AMG smoother degree.*expected 'automatic' or an integer in \[1, 10\]" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/AMG smoother degree=2.5"
+expect "bad AMG Chebyshev ratio" "AMG Chebyshev ratio.*expected 'automatic' or a number" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/AMG Chebyshev ratio=wide"
+expect "bad AMG isochoric modes" "--set 'Mechanics/Linear solver/AMG isochoric modes=sometimes'.*automatic\|true\|false" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/AMG isochoric modes=sometimes"
+expect "bad AMG aggregation threshold" "--set 'Mechanics/Linear solver/AMG aggregation threshold=2'" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/AMG aggregation threshold=2"
+expect "bad AMG coarse size" "--set 'Mechanics/Linear solver/AMG coarse size=0'" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/AMG coarse size=0"
+expect "bad GMRES restart" "--set 'Mechanics/Linear solver/GMRES restart=0'" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/GMRES restart=0"
 expect "unknown option"     "unknown option '--frobnicate'"               "$anvil" "$src/prm/cantilever.prm" --frobnicate
 expect "bad probe"          "--set: 'Output/Probes'"                       "$anvil" "$src/prm/cantilever.prm" --set "Output/Probes=tip: 10"
 expect "unknown QoI probe"  "'Output/Quantities of interest'.*no probe named 'tap'" "$anvil" "$src/prm/cantilever.prm" --set "Output/Quantities of interest=a: probe(tap, ux)"

@@ -44,6 +44,10 @@ of the same size side by side). ANVIL_MUELU_PARAMETERS sets MueLu's parameters
 as ANVIL_ML_PARAMETERS sets ML's (e.g. 'smoother: params/chebyshev: degree:int=5;
 sa: use filtered matrix:bool=true'; doc/linear_solver.md, session 16).
 
+Since session 17 the AMG settings are 'automatic': once the material flows plastically,
+the isochoric modes with Chebyshev 6 over [lambda_max/100, lambda_max]; --set
+'Mechanics/Linear solver/AMG isochoric modes=false' gives the earlier default.
+
 --set passes an entry to every run (e.g. 'Mechanics/Linear solver/AMG rebuild
 growth=0' for the hierarchy built at every solve, as before session 8).
 """

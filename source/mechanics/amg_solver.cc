@@ -106,10 +106,12 @@ namespace anvil
     // V-cycle; with the isochoric modes as well degree 5 halves them
     // (doc/linear_solver.md, session 14).
     data.smoother_sweeps       = settings.smoother_degree;
-    data.aggregation_threshold = 0.02;
+    data.aggregation_threshold = settings.aggregation_threshold;
     Teuchos::ParameterList              list;
     std::unique_ptr<Epetra_MultiVector> unused; // deal.II's boolean modes: none given
     data.set_parameters(list, unused, K);
+    list.set("smoother: Chebyshev alpha", settings.chebyshev_ratio);
+    list.set("coarse: max size", static_cast<int>(settings.coarse_size));
 
     // ML reads the modes (copied into its hierarchy) during initialize().
     const Epetra_MultiVector modes = as_multivector(K, near_null_space);
@@ -216,12 +218,13 @@ namespace anvil
     list.set("verbosity", "none");
     list.set("multigrid algorithm", "sa");
     list.set("number of equations", static_cast<int>(settings.components));
-    list.set("coarse: max size", 2000);
+    list.set("coarse: max size", static_cast<int>(settings.coarse_size));
     list.set("coarse: type", "KLU2");
     list.set("aggregation: type", "uncoupled");
-    list.set("aggregation: drop tol", 0.02);
+    list.set("aggregation: drop tol", settings.aggregation_threshold);
     list.set("smoother: type", "CHEBYSHEV");
     list.sublist("smoother: params").set("chebyshev: degree", static_cast<int>(settings.smoother_degree));
+    list.sublist("smoother: params").set("chebyshev: ratio eigenvalue", settings.chebyshev_ratio);
     // R = Pᵀ applied through P, not stored. R A P as a triple product
     // (`rap: triple product`, A P not kept) saves 4 % of the peak at 1.75
     // times the CPU (Tpetra 13.2's serial kernel): not taken (doc/linear_solver.md).
@@ -260,9 +263,9 @@ namespace anvil
     SolverControl control(settings.max_iterations, settings.tolerance * b.l2_norm());
     // Right preconditioning: the test is on the true residual |b − K x|
     // (left preconditioning would test |P⁻¹(b − K x)|, in mm, against a
-    // tolerance in N). Restart 30: each Krylov vector costs 8 B per DoF.
+    // tolerance in N). deal.II keeps restart + 2 vectors, 8 B per DoF each.
     SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
-      control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(30, true));
+      control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(settings.restart + 2, true));
     // deal.II's vector pool keeps the Krylov basis (~32 vectors, 256 B per
     // DoF) after the solve, and the next AMG set-up, the run's memory peak,
     // would sit on top of it: give it back (a few page faults per solve).

@@ -67,20 +67,53 @@ namespace anvil
     IterativeSolverSettings settings;
     settings.tolerance      = parameters.linear_tolerance;
     settings.max_iterations = parameters.linear_max_iterations;
+    settings.restart        = parameters.gmres_restart;
     settings.higher_order   = parameters.polynomial_degree > 1;
     settings.rebuild_growth = parameters.amg_rebuild_growth;
-    settings.smoother_degree = parameters.amg_smoother_degree;
     settings.components     = dim; // when the nodes' rows are consecutive
     if (parameters.amg_package == "MueLu")
       settings.package = IterativeSolverSettings::Package::muelu;
     if (const char *s = std::getenv("ANVIL_FINE_SMOOTHER"))
       settings.aggregate_blocks = std::string(s) == "blocks";
-    const bool isochoric = parameters.amg_isochoric_modes;
+    // Plastic flow makes the tangent nearly incompressible (shear stiffness
+    // ~H/3 against the bulk modulus): the isochoric modes, and a Chebyshev
+    // smoother of degree 6 over [λ_max/100, λ_max], bring the plastic F-bar
+    // block from 66-85 (2D) and 45-61 (3D) Krylov iterations per solve to
+    // <= 30 (doc/linear_solver.md, session 17). Elastic solves (8-10
+    // iterations) keep the cheaper rigid-body modes and Chebyshev 2.
+    const bool isochoric = parameters.amg_isochoric_modes == "automatic" ? has_flowed_plastically()
+                                                                          : parameters.amg_isochoric_modes == "true";
+    settings.smoother_degree =
+      parameters.amg_smoother_degree > 0 ? parameters.amg_smoother_degree : (isochoric ? 6 : 2);
+    settings.chebyshev_ratio =
+      parameters.amg_chebyshev_ratio > 0 ? parameters.amg_chebyshev_ratio : (isochoric ? 100 : 10);
+    settings.aggregation_threshold = parameters.amg_aggregation_threshold;
+    settings.coarse_size           = parameters.amg_coarse_size;
     const auto modes     = [&]() { return rigid_body_modes(mapping, dof_handler, &solution, isochoric); };
-    return amg.solve(system_matrix, du, system_rhs, modes, settings);
+    const unsigned int iterations = amg.solve(system_matrix, du, system_rhs, modes, settings);
+    // Benchmarks: each solve's count (the averages hide the restarts).
+    if (std::getenv("ANVIL_KRYLOV_LOG") && Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+      std::cout << "Krylov: " << iterations << (isochoric ? " isochoric" : " rigid") << ", Chebyshev "
+                << settings.smoother_degree << " ratio " << settings.chebyshev_ratio << std::endl;
+    return iterations;
+  }
+
+  template <int dim>
+  bool MechanicalProblem<dim>::has_flowed_plastically() const
+  {
+    // The current (trial) state: a point yielding in this Newton iteration counts.
+    int plastic = 0;
+    for (const auto &point : points.raw())
+      if (point && point->equivalent_plastic_strain() > 0)
+        {
+          plastic = 1;
+          break;
+        }
+    return Utilities::MPI::max(plastic, mpi_communicator) > 0;
   }
 
 #define INSTANTIATE(dim)                                                                      \
+  template bool         MechanicalProblem<dim>::has_flowed_plastically() const;             \
   template unsigned int MechanicalProblem<dim>::solve_linear_system(                          \
     TrilinosWrappers::MPI::Vector &);
   ANVIL_INSTANTIATE(INSTANTIATE)

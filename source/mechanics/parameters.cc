@@ -98,22 +98,37 @@ namespace anvil
                       "Relative tolerance of the iterative solver (dimensionless).");
     prm.declare_entry("Maximum iterations", "1000", Patterns::Integer(1),
                       "Iterations of the iterative solver before the step is cut back.");
+    prm.declare_entry("GMRES restart", "28", Patterns::Integer(1, 1000),
+                      "GMRES iterations before a restart (it keeps that many Krylov vectors + 2, "
+                      "8 bytes per DoF each; 28 is deal.II's default; doc/linear_solver.md).");
     prm.declare_entry("AMG rebuild growth", "0", Patterns::Double(0),
                       "0: build the AMG hierarchy for every solve. g > 0: keep it across Newton "
                       "iterations and steps, giving the kept one g times the Krylov iterations of "
                       "its first solve before a fresh one continues (pays on elastic and contact "
                       "scenes, not on spreading plasticity: doc/linear_solver.md).");
-    prm.declare_entry("AMG smoother degree", "2", Patterns::Integer(1, 10),
+    prm.declare_entry("AMG smoother degree", "automatic", Patterns::Anything(),
                       "Degree of the Chebyshev smoother on every level of the AMG hierarchy "
-                      "(pre and post). Higher degrees buy Krylov iterations at more work per "
-                      "V-cycle; with 'AMG isochoric modes' 5 halves the iterations of plastic "
-                      "F-bar flow (doc/linear_solver.md).");
-    prm.declare_entry("AMG isochoric modes", "false", Patterns::Bool(),
+                      "(pre and post), 1 to 10, or automatic: 6 with the isochoric modes, else 2. "
+                      "Higher degrees buy Krylov iterations at more work per V-cycle "
+                      "(doc/linear_solver.md).");
+    prm.declare_entry("AMG Chebyshev ratio", "automatic", Patterns::Anything(),
+                      "The Chebyshev smoother damps the eigenvalues of diag(K)^-1 K between "
+                      "lambda_max / ratio and lambda_max: a number > 1, or automatic: 100 with the "
+                      "isochoric modes (it then reaches the low-energy isochoric fields of plastic "
+                      "flow), else 10 (deal.II's). Dimensionless.");
+    prm.declare_entry("AMG isochoric modes", "automatic", Patterns::Selection("automatic|true|false"),
                       "Add the linear isochoric fields u = G (x - c), G symmetric and traceless "
                       "(2D: 2, 3D: 5), to the rigid-body modes AMG's coarse spaces are built on. "
                       "They are the low-energy fields of nearly incompressible (plastic) tangents; "
                       "they make the coarse levels denser (3D: 11 instead of 6 columns per "
-                      "aggregate; peak memory +30 %). doc/linear_solver.md.");
+                      "aggregate). automatic: for a solve where some material point has flowed "
+                      "plastically (plastic F-bar blocks: 2D and 3D <= 30 Krylov iterations per "
+                      "solve, doc/linear_solver.md, session 17).");
+    prm.declare_entry("AMG aggregation threshold", "0.02", Patterns::Double(0, 1),
+                      "Strength of connection below which AMG's aggregation drops a coupling "
+                      "(ML's 'aggregation: threshold', MueLu's drop tolerance; dimensionless).");
+    prm.declare_entry("AMG coarse size", "2000", Patterns::Integer(1),
+                      "Rows below which the AMG hierarchy stops coarsening and solves by KLU.");
     prm.declare_entry("AMG package", "ML", Patterns::Selection("ML|MueLu"),
                       "The algebraic multigrid library of the iterative solver: Trilinos ML "
                       "(through deal.II) or MueLu (Tpetra; libanvil-muelu.so, loaded only when "
@@ -208,9 +223,35 @@ namespace anvil
     linear_solver         = prm.get("Type");
     linear_tolerance      = prm.get_double("Tolerance");
     linear_max_iterations = prm.get_integer("Maximum iterations");
+    gmres_restart         = prm.get_integer("GMRES restart");
     amg_rebuild_growth    = prm.get_double("AMG rebuild growth");
-    amg_smoother_degree   = prm.get_integer("AMG smoother degree");
-    amg_isochoric_modes   = prm.get_bool("AMG isochoric modes");
+    // "automatic" (0 here) or a number in [low, high]; else a one-line error.
+    const auto automatic_or = [&](const char *entry, const double low, const double high) {
+      const std::string value = prm.get(entry);
+      if (value == "automatic")
+        return 0.;
+      try
+        {
+          std::size_t  used = 0;
+          const double x    = std::stod(value, &used);
+          if (used == value.size() && x >= low && x <= high)
+            return x;
+        }
+      catch (const std::exception &)
+        {
+        }
+      scene.fail(std::string("Mechanics/Linear solver/") + entry,
+                 "= '" + value + "': expected 'automatic' or a number in [" + dealii::Utilities::to_string(low) +
+                   ", " + dealii::Utilities::to_string(high) + "]");
+    };
+    amg_smoother_degree = static_cast<unsigned int>(automatic_or("AMG smoother degree", 1, 10));
+    if (amg_smoother_degree != 0 && prm.get("AMG smoother degree") != std::to_string(amg_smoother_degree))
+      scene.fail("Mechanics/Linear solver/AMG smoother degree",
+                 "= '" + prm.get("AMG smoother degree") + "': expected 'automatic' or an integer in [1, 10]");
+    amg_chebyshev_ratio       = automatic_or("AMG Chebyshev ratio", 1.0001, 1e6);
+    amg_isochoric_modes       = prm.get("AMG isochoric modes");
+    amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
+    amg_coarse_size           = prm.get_integer("AMG coarse size");
     amg_package           = prm.get("AMG package");
     direct_solver         = prm.get("Direct solver");
     const std::string limit = prm.get("Direct solver limit");

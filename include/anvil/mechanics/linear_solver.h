@@ -76,10 +76,22 @@ namespace anvil
   {
     double       tolerance      = 1e-8; // relative to |b|
     unsigned int max_iterations = 1000;
+    /// GMRES's Krylov basis before a restart (8 B per DoF per vector).
+    unsigned int restart        = 28;
     bool         higher_order   = false; // Q2
     /// Chebyshev degree of ML's smoother on every level (the fine level's
     /// unless aggregate_blocks).
     unsigned int smoother_degree = 2;
+    /// Chebyshev's range: it damps the eigenvalues of D⁻¹K in
+    /// [λ_max / ratio, λ_max] (ML's "smoother: Chebyshev alpha", deal.II's
+    /// 10; MueLu's "chebyshev: ratio eigenvalue"). With the isochoric modes
+    /// 100 reaches the low-energy isochoric fields a plastic tangent has
+    /// below λ_max / 10 (doc/linear_solver.md, session 17).
+    double       chebyshev_ratio = 10;
+    /// ML's "aggregation: threshold" (MueLu's drop tolerance).
+    double       aggregation_threshold = 0.02;
+    /// Rows below which a level is solved by KLU.
+    unsigned int coarse_size = 2000;
     unsigned int components     = 1;     // dofs per node, contiguous ("PDE equations")
     /// ReusedAMG: iterations allowed to a kept hierarchy, in units of its
     /// first solve's (0: a new hierarchy for every solve).

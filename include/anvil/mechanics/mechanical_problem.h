@@ -94,9 +94,14 @@ namespace anvil
       std::string  linear_solver                = "automatic";
       double       linear_tolerance             = 1e-10;
       unsigned int linear_max_iterations        = 1000;
+      unsigned int gmres_restart                = 28;    // Krylov basis size before a restart
       double       amg_rebuild_growth           = 0;
-      unsigned int amg_smoother_degree          = 2;     // Chebyshev degree
-      bool         amg_isochoric_modes          = false; // near-null space += u = G (x − c)
+      // AMG (linear_solver.h): 0 / "automatic" chosen per solve in solve_linear_system().
+      unsigned int amg_smoother_degree          = 0;     // Chebyshev degree
+      double       amg_chebyshev_ratio          = 0;     // Chebyshev's λ_max / λ_min
+      std::string  amg_isochoric_modes          = "automatic"; // near-null space += u = G (x − c)
+      double       amg_aggregation_threshold    = 0.02;
+      unsigned int amg_coarse_size              = 2000;
       std::string  amg_package                  = "ML";  // ML | MueLu (the module libanvil-muelu.so)
       unsigned int direct_solver_limit          = 200000;
       std::string  direct_solver                = "auto"; // auto | klu | band
@@ -335,6 +340,8 @@ namespace anvil
     double line_search(const dealii::TrilinosWrappers::MPI::Vector &du, bool full_step,
                        double time_new, bool &assembled, double bound);
     unsigned int solve_linear_system(dealii::TrilinosWrappers::MPI::Vector &du);
+    /// Some material point (any process) has a plastic strain: AMG's "automatic" settings.
+    bool has_flowed_plastically() const;
     double       residual_norm() const;
     /// The smallest residual the digits of u and of F = I + ∇u can resolve,
     /// 2 ε |diag K ∘ (|u| + h)| over the free dofs (residual_floor.cc);
