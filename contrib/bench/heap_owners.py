@@ -15,7 +15,7 @@ rules = [
  ("step-start table (F_n, F̄_n, u_n key)", ["PointStart", "StepStart"]),
  ("per-point doubles (heat sources, T, Ẇ)", ["PointData<>::reinit", "PointData<>::operator="]),
  ("point table (shared_ptr per point)", ["setup_quadrature_point_data"]),
- ("copier's matrix positions (≤ 64 MB)", ["matrix_positions"]),
+ ("copier's matrix slots (≤ 64 MB)", ["matrix_slots", "matrix_positions"]),
  ("copier's other tables", ["CellScatter", "AssemblyMapping", "reserve_vector_indices"]),
  ("cells' pattern rows (kept)", ["setup_matrix()::{lambda()#1}"]),
  ("matrix values", ["SparseMatrix::reinit(Epetra_CrsMatrix"]),

@@ -43,7 +43,7 @@ namespace anvil
       values_refused = false;
       local_ids.clear();
       vector_ids.clear();
-      matrix_positions_.clear();
+      matrix_slots_.clear();
       owned_ids.clear();
       for (auto &set : constrained_sets)
         set.flags.clear();

@@ -74,27 +74,28 @@ namespace anvil
       return own;
     }
 
-    // The positions of the cell's matrix entries (null: add otherwise).
+    // The slots of the cell's matrix entries in its rows (null: add otherwise).
     template <int dim>
-    const int *CellScatter<dim>::matrix_positions(const CopyData &copy) const
+    const unsigned char *CellScatter<dim>::matrix_slots(const CopyData &copy, const int *own) const
     {
       if (!matrix_values)
         return nullptr;
-      int *const pos = mapping.matrix_positions(copy.cell_index, n_dofs);
-      if (!pos)
+      unsigned char *const slot = mapping.matrix_slots(copy.cell_index, n_dofs);
+      if (!slot)
         return nullptr;
-      if (pos[0] == -2 && !find_positions(copy, pos))
-        pos[0] = -1;
-      return pos[0] >= 0 ? pos : nullptr;
+      if (slot[0] == AssemblyMapping<dim>::slot_unknown && !find_slots(copy, own, slot))
+        slot[0] = AssemblyMapping<dim>::slot_refused;
+      return slot[0] != AssemblyMapping<dim>::slot_refused ? slot : nullptr;
     }
 
     // The cell's local column numbers once, in increasing order, then each
     // row walked once beside them (FillComplete sorts a row's columns; an
     // entry the walk passed is searched for). Found anew for every cell at
     // each of the tube's ~180 new patterns: a search per entry cost 5400
-    // instructions per cell, this ~1500.
+    // instructions per cell, this ~1500. The row is the owned vectors' entry
+    // own[i] (checked), so that a slot within it is all that is kept.
     template <int dim>
-    bool CellScatter<dim>::find_positions(const CopyData &copy, int *pos) const
+    bool CellScatter<dim>::find_slots(const CopyData &copy, const int *own, unsigned char *slot) const
     {
       std::array<std::pair<int, unsigned int>, 64> column;
       AssertIndexRange(n_dofs, column.size() + 1);
@@ -106,7 +107,7 @@ namespace anvil
       for (unsigned int i = 0; i < n_dofs; ++i)
         {
           const int row = matrix->LRID(static_cast<TrilinosIndex>(copy.dof_indices[i]));
-          if (row < 0)
+          if (row < 0 || row != own[i])
             return false;
           const int *const begin = row_columns + row_start[row];
           const int *const end   = row_columns + row_start[row + 1];
@@ -117,9 +118,9 @@ namespace anvil
                 ++at;
               if (at == end || *at != column[j].first)
                 at = std::find(begin, end, column[j].first);
-              if (at == end)
+              if (at == end || at - begin >= AssemblyMapping<dim>::slot_refused)
                 return false;
-              pos[i * n_dofs + column[j].second] = at - row_columns;
+              slot[i * n_dofs + column[j].second] = static_cast<unsigned char>(at - begin);
             }
         }
       return true;
@@ -172,11 +173,15 @@ namespace anvil
             rhs_values[own[i]] += copy.rhs(i);
           return true;
         }
-      if (const int *pos = own && rhs_values ? matrix_positions(copy) : nullptr)
+      if (const unsigned char *slot = own && rhs_values ? matrix_slots(copy, own) : nullptr)
         {
           const double *K = &copy.matrix(0, 0);
-          for (unsigned int k = 0; k < n_dofs * n_dofs; ++k)
-            matrix_values[pos[k]] += K[k];
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            {
+              double *const row = matrix_values + row_start[own[i]];
+              for (unsigned int j = 0; j < n_dofs; ++j)
+                row[slot[i * n_dofs + j]] += K[i * n_dofs + j];
+            }
           for (unsigned int i = 0; i < n_dofs; ++i)
             rhs_values[own[i]] += copy.rhs(i);
           return true;

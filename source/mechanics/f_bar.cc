@@ -62,11 +62,16 @@ namespace anvil
     }
 
     template <int dim>
+    double FBar<dim>::old_root(const ScratchData<dim> &scratch, const Tensor<2, 3> &F_old) const
+    {
+      return f_bar_power(formulation.plane_strain, scratch.J0_old / formulation.active_det(F_old));
+    }
+
+    template <int dim>
     Tensor<2, 3> FBar<dim>::old_material_gradient(const ScratchData<dim> &scratch,
                                                   const Tensor<2, 3>     &F_old) const
     {
-      return formulation.bar(
-        F_old, f_bar_power(formulation.plane_strain, scratch.J0_old / formulation.active_det(F_old)));
+      return formulation.bar(F_old, old_root(scratch, F_old));
     }
 
     template <int dim>

@@ -284,9 +284,8 @@ namespace anvil
           const Tensor<2, 3> F     = formulation.deformation_gradient(ref, q, scratch.local_u, R);
           if (!have_start)
             {
-              start.F_old     = formulation.deformation_gradient(ref, q, u_old, R);
-              start.F_mat_old = formulation.f_bar ? f_bar.old_material_gradient(scratch, start.F_old) :
-                                                    start.F_old;
+              start.F_old    = formulation.deformation_gradient(ref, q, u_old, R);
+              start.beta_old = formulation.f_bar ? f_bar.old_root(scratch, start.F_old) : 1.;
               if (kept)
                 kept[q] = start;
             }
@@ -300,7 +299,7 @@ namespace anvil
             }
           double       beta  = 1;
           Tensor<2, 3> F_mat = F; // what the material sees
-          const Tensor<2, 3> &F_mat_old = s0.F_mat_old;
+          const Tensor<2, 3>  F_mat_old = formulation.f_bar ? formulation.bar(F_old, s0.beta_old) : F_old;
           if (formulation.f_bar)
             F_mat = f_bar.material_gradient(scratch, F, beta);
           IncrementalKinematics &kin = p.kin;

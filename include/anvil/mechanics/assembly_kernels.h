@@ -59,6 +59,8 @@ namespace anvil
       /// F̄_n = (J₀ₙ/J_n)^α F_n (evaluate_centre() with the old configuration).
       dealii::Tensor<2, 3> old_material_gradient(const ScratchData<dim>     &scratch,
                                                  const dealii::Tensor<2, 3> &F_old) const;
+      /// Its root β_n = (J₀ₙ/J_n)^α alone: F̄_n = formulation.bar(F_n, β_n).
+      double old_root(const ScratchData<dim> &scratch, const dealii::Tensor<2, 3> &F_old) const;
       /// δσ in the direction F̄ itself: Σ_d F̄_kL δσ_d.
       dealii::SymmetricTensor<2, 3>
       stress_along(const dealii::Tensor<2, 3>                        &F_mat,

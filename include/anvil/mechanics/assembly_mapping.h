@@ -75,31 +75,38 @@ namespace anvil
       void forget_local_indices() const
       {
         local_ids.clear();
-        matrix_positions_.clear();
+        matrix_slots_.clear();
       }
 
+      /// matrix_slots(): not looked up yet (first slot of a cell), and the
+      /// cell has a row or column this process cannot add by position.
+      static constexpr unsigned char slot_unknown = 255, slot_refused = 254;
+
       /**
-       * Per active cell index, the positions of the cell's @p n_dofs² matrix
-       * entries (i, j), row-major, in the value array of the matrix's CRS
-       * storage (Epetra_CrsMatrix::ExtractCrsDataPointers), so that the
-       * copier adds each entry where SumIntoMyValues would have found it,
-       * without searching the row (first −2: not looked up yet; −1: the cell
-       * has a row or column this process cannot add by position). Kept with
-       * local_indices() (forget_local_indices() when a new matrix is made);
-       * null when all cells' positions would take more than @p max_bytes.
-       * Not thread-safe: the copier runs serially.
+       * Per active cell index, where the cell's @p n_dofs² matrix entries
+       * (i, j), row-major, sit in their rows of the matrix's CRS storage
+       * (Epetra_CrsMatrix::ExtractCrsDataPointers): entry (i, j) is at
+       * row_start[row i] + slot, so that the copier adds each entry where
+       * SumIntoMyValues would have found it, without searching the row. One
+       * byte per entry (rows of at most 254 entries; longer rows: the cell is
+       * refused): 4× less than whole positions, 663 → 166 B/DoF in 3D
+       * (doc/memory.md). First slot slot_unknown: not looked up yet;
+       * slot_refused: add otherwise. Kept with local_indices()
+       * (forget_local_indices() when a new matrix is made); null when all
+       * cells' slots would take more than @p max_bytes. Not thread-safe: the
+       * copier runs serially.
        */
-      int *matrix_positions(unsigned int active_cell_index, unsigned int n_dofs,
-                            std::size_t max_bytes = 64u << 20) const
+      unsigned char *matrix_slots(unsigned int active_cell_index, unsigned int n_dofs,
+                                  std::size_t max_bytes = 64u << 20) const
       {
         const std::size_t per_cell = std::size_t(n_dofs) * n_dofs;
-        if (matrix_positions_.empty())
+        if (matrix_slots_.empty())
           {
-            if (per_cell * n_active_cells * sizeof(int) > max_bytes)
+            if (per_cell * n_active_cells > max_bytes)
               return nullptr;
-            matrix_positions_.assign(per_cell * n_active_cells, -2);
+            matrix_slots_.assign(per_cell * n_active_cells, slot_unknown);
           }
-        return &matrix_positions_[per_cell * active_cell_index];
+        return &matrix_slots_[per_cell * active_cell_index];
       }
 
       /**
@@ -183,7 +190,8 @@ namespace anvil
       unsigned int                                                     n_active_cells = 0;
       mutable std::shared_ptr<ReferenceValues<dim>>                    values;
       mutable bool                                                     values_refused = false;
-      mutable std::vector<int> local_ids, vector_ids, matrix_positions_, owned_ids;
+      mutable std::vector<int>           local_ids, vector_ids, owned_ids;
+      mutable std::vector<unsigned char> matrix_slots_;
       struct ConstrainedSet
       {
         std::vector<std::size_t> dofs;

@@ -35,7 +35,8 @@ namespace anvil
      * A cell with no constrained dof and only owned rows and columns adds
      * its matrix straight into Epetra's CRS value array, at the positions of
      * its entries found once per cell and matrix pattern
-     * (AssemblyMapping::matrix_positions), and its vectors by owned local
+     * (AssemblyMapping::matrix_slots, within rows numbered as the owned
+     * vectors' entries), and its vectors by owned local
      * index: no search of a row, no global-to-local look-up. Each entry gets
      * the one addition SumIntoMyValues and Vector::add would make, in the
      * same cell order: the same bits. Otherwise local row and column numbers
@@ -58,8 +59,8 @@ namespace anvil
 
       double    *owned_values(Vector &v) const;
       const int *owned_indices(const CopyData &copy) const;
-      const int *matrix_positions(const CopyData &copy) const;
-      bool       find_positions(const CopyData &copy, int *pos) const;
+      const unsigned char *matrix_slots(const CopyData &copy, const int *own) const;
+      bool find_slots(const CopyData &copy, const int *own, unsigned char *slot) const;
       bool       add_by_local_indices(const CopyData &copy);
       bool       add_unconstrained(const CopyData &copy, const int *own);
       void       add_force(Vector &v, double *values, const int *own, const CopyData &copy,
@@ -73,7 +74,7 @@ namespace anvil
       const Epetra_BlockMap                   &owned_map;
       Epetra_CrsMatrix                        *matrix = nullptr;
       int    *row_start = nullptr, *row_columns = nullptr;
-      double *matrix_values = nullptr;
+      double *matrix_values = nullptr; // null: no addition by slots
       double *rhs_values, *internal_values, *external_values, *inertia_values;
       signed char *constrained_cells;
     };

@@ -428,7 +428,8 @@ namespace anvil
     void setup_matrix();
     /// The cells' couplings (make_sparsity_pattern's columns of each locally
     /// relevant row, in order), kept for setup_matrix() until the dofs or
-    /// the constraints change (emptied where they are made).
+    /// the constraints change (emptied where they are made); with contact
+    /// only: without, no other pattern follows and they are freed.
     std::vector<std::vector<dealii::types::global_dof_index>> cell_pattern;
     /// Lines for contact-surface dofs that this process does not see but their owner constrains.
     void add_remote_constraints(dealii::AffineConstraints<double> &c) const;
