@@ -112,6 +112,8 @@ namespace anvil
     data.set_parameters(list, unused, K);
     list.set("smoother: Chebyshev alpha", settings.chebyshev_ratio);
     list.set("coarse: max size", static_cast<int>(settings.coarse_size));
+    if (settings.plain_aggregation)
+      list.set("aggregation: damping factor", 0.);
 
     // ML reads the modes (copied into its hierarchy) during initialize().
     const Epetra_MultiVector modes = as_multivector(K, near_null_space);
@@ -216,7 +218,7 @@ namespace anvil
     // ML's settings in build_amg(), in MueLu's names (its MasterList).
     Teuchos::ParameterList list;
     list.set("verbosity", "none");
-    list.set("multigrid algorithm", "sa");
+    list.set("multigrid algorithm", settings.plain_aggregation ? "unsmoothed" : "sa");
     list.set("number of equations", static_cast<int>(settings.components));
     list.set("coarse: max size", static_cast<int>(settings.coarse_size));
     list.set("coarse: type", "KLU2");

@@ -89,6 +89,7 @@ namespace anvil
       parameters.amg_chebyshev_ratio > 0 ? parameters.amg_chebyshev_ratio : (isochoric ? 100 : 10);
     settings.aggregation_threshold = parameters.amg_aggregation_threshold;
     settings.coarse_size           = parameters.amg_coarse_size;
+    settings.plain_aggregation     = parameters.amg_plain_aggregation;
     const auto modes     = [&]() { return rigid_body_modes(mapping, dof_handler, &solution, isochoric); };
     const unsigned int iterations = amg.solve(system_matrix, du, system_rhs, modes, settings);
     // Benchmarks: each solve's count (the averages hide the restarts).

@@ -129,6 +129,11 @@ namespace anvil
                       "(ML's 'aggregation: threshold', MueLu's drop tolerance; dimensionless).");
     prm.declare_entry("AMG coarse size", "2000", Patterns::Integer(1),
                       "Rows below which the AMG hierarchy stops coarsening and solves by KLU.");
+    prm.declare_entry("AMG prolongator", "smoothed", Patterns::Selection("smoothed|plain"),
+                      "smoothed: smoothed aggregation (fewest Krylov iterations). plain: the "
+                      "tentative prolongator alone, for large 3D problems short of memory: 3D "
+                      "plastic F-bar 30^3 with the automatic settings 9835 -> 6627 B/DoF at 20.7 -> "
+                      "36.9 Krylov iterations per solve (doc/memory.md, session 18).");
     prm.declare_entry("AMG package", "ML", Patterns::Selection("ML|MueLu"),
                       "The algebraic multigrid library of the iterative solver: Trilinos ML "
                       "(through deal.II) or MueLu (Tpetra; libanvil-muelu.so, loaded only when "
@@ -252,6 +257,7 @@ namespace anvil
     amg_isochoric_modes       = prm.get("AMG isochoric modes");
     amg_aggregation_threshold = prm.get_double("AMG aggregation threshold");
     amg_coarse_size           = prm.get_integer("AMG coarse size");
+    amg_plain_aggregation     = prm.get("AMG prolongator") == "plain";
     amg_package           = prm.get("AMG package");
     direct_solver         = prm.get("Direct solver");
     const std::string limit = prm.get("Direct solver limit");

@@ -92,6 +92,10 @@ namespace anvil
     double       aggregation_threshold = 0.02;
     /// Rows below which a level is solved by KLU.
     unsigned int coarse_size = 2000;
+    /// Plain (unsmoothed) aggregation: the tentative prolongator, whose
+    /// Galerkin products are ~30 % of the smoothed one's memory in 3D at
+    /// 1.6-1.8x the Krylov iterations (doc/memory.md, session 18).
+    bool         plain_aggregation = false;
     unsigned int components     = 1;     // dofs per node, contiguous ("PDE equations")
     /// ReusedAMG: iterations allowed to a kept hierarchy, in units of its
     /// first solve's (0: a new hierarchy for every solve).
