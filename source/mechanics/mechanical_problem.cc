@@ -23,6 +23,7 @@
 #include <anvil/mechanics/serial_matrix.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
