@@ -388,6 +388,12 @@ namespace anvil
     const auto known = boundary_dofs.find(boundary);
     if (known != boundary_dofs.end())
       return known->second;
+    // The lists are built once per numbering for every id this process sees;
+    // the key internal_face_boundary_id marks them built, so an id absent
+    // here gets its empty list instead of a second build appending to the others.
+    if (boundary_dofs.count(numbers::internal_face_boundary_id) > 0)
+      return boundary_dofs[boundary];
+    boundary_dofs[numbers::internal_face_boundary_id];
     // Every boundary's list from one pass over the faces and one over the
     // cells (a pass per boundary cost ~15-30 M instructions per boundary on
     // the 48 k-DoF strip, twelve boundaries: s18-np2). Each list keeps the
