@@ -3,7 +3,7 @@ degree and Chebyshev ratio all 'automatic') meets issue 15's bound on plastic
 F-bar blocks: every GMRES solve to 1e-8 relative residual takes at most 30
 Krylov iterations per solve on average, in 2D (plane strain, 48 x 48 cells)
 and 3D (8^3 cells), once the material has flowed plastically (the automatic
-settings switch to the isochoric modes, Chebyshev 6 over [lambda_max / 100,
+settings switch to the isochoric modes, Chebyshev 8 (2D) or 6 (3D) over [lambda_max / 100,
 lambda_max]; doc/linear_solver.md, session 17). Also: the switch is what
 does it (isochoric modes = false, i.e. the rigid-body modes with Chebyshev 2,
 needs more), and the iterative answer is the direct solver's (KLU): every

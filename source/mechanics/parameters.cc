@@ -108,7 +108,7 @@ namespace anvil
                       "scenes, not on spreading plasticity: doc/linear_solver.md).");
     prm.declare_entry("AMG smoother degree", "automatic", Patterns::Anything(),
                       "Degree of the Chebyshev smoother on every level of the AMG hierarchy "
-                      "(pre and post), 1 to 10, or automatic: 6 with the isochoric modes, else 2. "
+                      "(pre and post), 1 to 10, or automatic: with the isochoric modes 8 in 2D and 6 in 3D, else 2. "
                       "Higher degrees buy Krylov iterations at more work per V-cycle "
                       "(doc/linear_solver.md).");
     prm.declare_entry("AMG Chebyshev ratio", "automatic", Patterns::Anything(),
