@@ -6,6 +6,7 @@
 #include <anvil/core/instantiate.h>
 #include <anvil/material/planar_tangent.h>
 #include <anvil/mechanics/assembly_kernels.h>
+#include <anvil/mechanics/plane_strain_rows.h>
 
 #include <algorithm>
 
@@ -448,7 +449,12 @@ namespace anvil
           // Only δσ's components 00, 11, 22, 01 enter: the planar Jaumann
           // tangent computes no others (cauchy_tangent's dispatch, without them).
           auto &dsigma = scratch.dsigma;
-          if (p.kin.planar && p.kin.rate == ObjectiveRate::jaumann)
+          // Plane strain reads only 00, 11, 01 (22 meets no direction).
+          if (!HOOP && p.kin.planar && p.kin.rate == ObjectiveRate::jaumann &&
+              plane_strain_tangent_rows(p.kin, p.point->committed_stress(), p.response,
+                                        formulation.directions, dsigma.data()))
+            ;
+          else if (p.kin.planar && p.kin.rate == ObjectiveRate::jaumann)
             planar_cauchy_tangent_in_plane(p.kin, p.point->committed_stress(), p.response,
                                            formulation.directions, dsigma.data());
           else
