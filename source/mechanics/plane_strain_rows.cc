@@ -54,14 +54,18 @@ namespace anvil
 
       /// Rows 0 and 1 of (I + Z) Y Zᵀ for a block-diagonal Y (planar_triple_product
       /// without its column 2, which only out-of-plane σₙ reads): the same sums.
-      void triple_product_in_plane(const Tensor<2, 3> &Z, const SymmetricTensor<2, 3> &Y,
+      inline void triple_product_in_plane(const Tensor<2, 3> &Z, const SymmetricTensor<2, 3> &Y,
                                    double (&R)[2][2])
       {
         const double X[2][2] = {{1 + Z[0][0], 0 + Z[0][1]}, {0 + Z[1][0], 1 + Z[1][1]}};
-        double       XY[2][2];
+        // Y's block by its raw entries 00, 11, 01 (SymmetricTensor's [i][j]
+        // goes through accessor objects: most of this function's cost).
+        const double *y    = Y.begin_raw();
+        const double  B[2][2] = {{y[0], y[3]}, {y[3], y[1]}};
+        double        XY[2][2];
         for (unsigned int i = 0; i < 2; ++i)
           for (unsigned int j = 0; j < 2; ++j)
-            XY[i][j] = X[i][0] * Y[0][j] + X[i][1] * Y[1][j];
+            XY[i][j] = X[i][0] * B[0][j] + X[i][1] * B[1][j];
         for (unsigned int i = 0; i < 2; ++i)
           for (unsigned int j = 0; j < 2; ++j)
             R[i][j] = XY[i][0] * Z[j][0] + XY[i][1] * Z[j][1];

@@ -4,7 +4,6 @@
 #include <anvil/mechanics/mechanical_problem.h>
 
 #include <Epetra_CrsMatrix.h>
-#include <Epetra_Vector.h>
 
 #include <cmath>
 #include <limits>
@@ -30,19 +29,29 @@ namespace anvil
       if (cell->is_locally_owned())
         h = std::max(h, cell->diameter());
     h = Utilities::MPI::max(h, mpi_communicator);
-    // The diagonal in one copy and u by local index (diag_element() and
-    // operator() searched the row and the map per dof: 23 of two_blocks' 38 M).
-    const Epetra_CrsMatrix &K = system_matrix.trilinos_matrix();
-    Epetra_Vector           diagonal(K.RowMap());
-    K.ExtractDiagonalCopy(diagonal);
-    const Epetra_BlockMap &u_map = owned_solution.trilinos_vector().Map();
-    const double          *u     = owned_solution.trilinos_vector()[0];
-    double                 sum   = 0;
+    // K_ii from its row's view and u_i by local index (diag_element() and
+    // operator() searched the row and the map per dof: 23 of two_blocks' 38 M;
+    // Epetra's ExtractDiagonalCopy scans every entry).
+    const Epetra_CrsMatrix &K     = system_matrix.trilinos_matrix();
+    const Epetra_BlockMap  &u_map = owned_solution.trilinos_vector().Map();
+    const double           *u     = owned_solution.trilinos_vector()[0];
+    double                  sum   = 0;
     for (const auto i : locally_owned_dofs)
       if (!active_constraints->is_constrained(i))
         {
-          const double k = 2 * std::abs(diagonal[K.RowMap().LID(static_cast<int>(i))]) *
-                           (std::abs(u[u_map.LID(static_cast<int>(i))]) + h);
+          const int row = K.RowMap().LID(static_cast<int>(i)),
+                    col = K.ColMap().LID(static_cast<int>(i));
+          int     n_entries = 0, *columns = nullptr;
+          double *values    = nullptr;
+          double  diagonal  = 0; // absent: 0, as diag_element()
+          if (row >= 0 && col >= 0 && K.ExtractMyRowView(row, n_entries, values, columns) == 0)
+            for (int k = 0; k < n_entries; ++k)
+              if (columns[k] == col)
+                {
+                  diagonal = values[k];
+                  break;
+                }
+          const double k = 2 * std::abs(diagonal) * (std::abs(u[u_map.LID(static_cast<int>(i))]) + h);
           sum += k * k;
         }
     return std::numeric_limits<double>::epsilon() *

@@ -117,10 +117,14 @@ namespace anvil
           Fi[0][0] = r00 * inv, Fi[0][1] = r01 * inv, Fi[0][2] = 0;
           Fi[1][0] = r10 * inv, Fi[1][1] = r11 * inv, Fi[1][2] = 0;
           Fi[2][0] = 0, Fi[2][1] = 0, Fi[2][2] = r22 * inv;
+          // σ's entries by raw index (00, 11, 22, 01): SymmetricTensor's
+          // [i][j] goes through accessor objects.
+          const double *sr     = sigma.begin_raw();
+          const double  s[2][2] = {{sr[0], sr[3]}, {sr[3], sr[1]}};
           for (unsigned int i = 0; i < 2; ++i)
             for (unsigned int J = 0; J < 2; ++J)
-              sFiT[i][J] = sigma[i][0] * Fi[J][0] + sigma[i][1] * Fi[J][1];
-          sFiT[2][2] = sigma[2][2] * Fi[2][2];
+              sFiT[i][J] = s[i][0] * Fi[J][0] + s[i][1] * Fi[J][1];
+          sFiT[2][2] = sr[2] * Fi[2][2];
           sFiT[0][2] = sFiT[1][2] = sFiT[2][0] = sFiT[2][1] = 0; // enter A times (F⁻¹)_J2 = 0
         }
       };
