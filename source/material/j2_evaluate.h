@@ -19,7 +19,7 @@ namespace anvil
   namespace j2
   {
     [[gnu::always_inline]] inline void J2Point::evaluate(const MaterialIncrement &inc, const double T, const double dT,
-                                  const Rotated &rotated, Trial &t) const
+                                  const Rotated &rotated, const bool adiabatic, Trial &t) const
     {
       const ElasticLaw &el   = model.elastic;
       const double      K    = el.bulk_modulus(T);
@@ -139,7 +139,7 @@ namespace anvil
           work                 = 0.5 * (q_start + q_end) * dp;
           // d(work)/dq_trial with dΔε̄/dq_tr = 1/(3G + H), dq_end/dq_tr = H/(3G + H):
           // the adiabatic tangent's only (finish()).
-          if (inc.adiabatic)
+          if (adiabatic)
             dwork_dq = 0.5 * (H * dp + q_start + q_end) / (3 * G + H);
         }
       t.work = work, t.dwork_dq = dwork_dq;
@@ -147,10 +147,16 @@ namespace anvil
       // with c at constant stress, the stress-producing part tr(Δε − βΔT I);
       // with c at constant volume (the seed's eq. 8 and 22), all of tr Δε.
       t.tr_rev = el.capacity_at_constant_volume ? tr_de + 3 * eth : tr_de;
-      // Sources per current volume, capacity per reference volume (ρ₀c/J per current volume).
-      t.rho_c = el.density * el.heat_capacity / inc.volume_ratio;
-      t.adiabatic_temperature_increment =
-        (el.taylor_quinney * work - 3 * K * t.beta * T * t.tr_rev) / t.rho_c;
+      // Sources per current volume, capacity per reference volume (ρ₀c/J per
+      // current volume). Only the adiabatic update reads ΔT_ad (two divisions
+      // of the isothermal one's eleven).
+      t.rho_c = t.adiabatic_temperature_increment = 0;
+      if (adiabatic)
+        {
+          t.rho_c = el.density * el.heat_capacity / inc.volume_ratio;
+          t.adiabatic_temperature_increment =
+            (el.taylor_quinney * work - 3 * K * t.beta * T * t.tr_rev) / t.rho_c;
+        }
     }
   } // namespace j2
 } // namespace anvil

@@ -75,8 +75,8 @@ namespace anvil
       }
     } // namespace
 
-    [[gnu::always_inline]] inline void J2Point::finish(const MaterialIncrement &inc, const MaterialRequest request, Trial &t,
-                                MaterialResponse &response)
+    [[gnu::always_inline]] inline void J2Point::finish(const MaterialIncrement &inc, const MaterialRequest request,
+                                const bool adiabatic, Trial &t, MaterialResponse &response)
     {
       const ElasticLaw &el = model.elastic;
       const double      T = t.T, K = t.K, G = t.G, beta = t.beta, deth = t.deth;
@@ -132,7 +132,7 @@ namespace anvil
       eps_c   = eps_n + dp;
       response.equivalent_plastic_strain = eps_c;
 
-      write_tangent(request, inc.adiabatic, K, G, H, dp, q_trial, n, response);
+      write_tangent(request, adiabatic, K, G, H, dp, q_trial, n, response);
 
       if (request & request_temperature_derivative)
         {
@@ -181,7 +181,7 @@ namespace anvil
         }
 
       const double tr_rev = t.tr_rev, rho_c = t.rho_c;
-      if (inc.adiabatic && (request & request_tangent))
+      if (adiabatic && (request & request_tangent))
         {
           // Partial derivatives of ΔT_ad at fixed T: ∂q_tr/∂Δε = √6 G n,
           // ∂q_tr/∂σ̃ₙ = √(3/2) n, ∂tr_rev/∂Δε = I.

@@ -56,6 +56,22 @@ namespace anvil
       if (((bits(R[0][2]) | bits(R[1][2]) | bits(R[2][0]) | bits(R[2][1]) | bits(sn[4]) | bits(sn[5]))
            << 1) == 0)
         {
+          // ΔR = I (no spin over the step: the bench's increments, cells at
+          // rest): σ̃ₙ = σₙ, as 1 x + 0 y = x (up to the sign of a zero sum).
+          // The in-plane off-diagonal pair is tested first: a rotating point
+          // pays one branch.
+          const std::uint64_t one = 0x3ff0000000000000; // the bits of 1.0
+          if (((bits(R[0][1]) | bits(R[1][0])) << 1) == 0 &&
+              ((bits(R[0][0]) ^ one) | (bits(R[1][1]) ^ one) | (bits(R[2][2]) ^ one)) == 0)
+            {
+              #pragma GCC unroll 6
+              for (unsigned int c = 0; c < 4; ++c)
+                rotated.trial[c] = sn[c];
+              rotated.trial[4] = rotated.trial[5] = 0;
+              rotated.lower[0]                    = sn[3];
+              rotated.lower[1] = rotated.lower[2] = 0;
+              return rotated;
+            }
           // Plane strain and axisymmetric: ΔR and σₙ are [2x2 block, 0; 0, (2,2)].
           // The products below are the general ones' nonzero terms (the others
           // add exact zeros), so the values are the same.
@@ -94,7 +110,7 @@ namespace anvil
     // memory (register pressure of the whole function; J2 bench, 3D plastic,
     // stress + tangent, with the locals and early unrolling of evaluate(): 492 → 474
     // instructions per update).
-    [[gnu::noinline, gnu::no_stack_protector]] void J2Point::update_isothermal(
+    [[gnu::noinline, gnu::no_stack_protector, gnu::optimize("no-tree-slp-vectorize")]] void J2Point::update_isothermal(
       const MaterialIncrement &increment, const MaterialRequest request, MaterialResponse &response)
     {
       response.volume_ratio_sensitivity = SymmetricTensor<2, 3>();
@@ -103,8 +119,8 @@ namespace anvil
       // through the return map.
       keep_for_audit(increment, rotated);
       Trial t;
-      evaluate(increment, increment.temperature, increment.temperature_increment, rotated, t);
-      finish(increment, request, t, response);
+      evaluate(increment, increment.temperature, increment.temperature_increment, rotated, false, t);
+      finish(increment, request, false, t, response);
     }
 
     // update_isothermal() and update_adiabatic() have no stack canary
@@ -151,7 +167,7 @@ namespace anvil
       for (unsigned int it = 0; it < 50; ++it)
         {
           evaluate(increment, increment.temperature + x1, increment.temperature_increment + x1,
-                   rotated, t);
+                   rotated, true, t);
           f1 = t.adiabatic_temperature_increment - x1;
           if (std::abs(f1) <= 1e-12 * (1 + std::abs(x1)))
             break;
@@ -162,7 +178,7 @@ namespace anvil
           if (it == 49)
             throw MaterialPointError("the adiabatic temperature change did not converge");
         }
-      finish(increment, inner, t, response);
+      finish(increment, inner, true, t, response);
       keep_for_audit(increment, rotated);
       response.adiabatic_temperature_increment = x1;
       adiabatic_guess                          = x1;

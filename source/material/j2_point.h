@@ -114,17 +114,22 @@ namespace anvil
         for (unsigned int c = 0; c < 6; ++c)
           de[c] = dstrain[c] - (c < 3 ? t.eth : 0.);
       }
+      // Hidden (and return_map()): update() reaches them by a direct jump,
+      // not through the PLT (an exported symbol of a shared library).
       /// update() without the adiabatic split.
-      void update_isothermal(const MaterialIncrement &increment, MaterialRequest request,
+      [[gnu::visibility("hidden")]] void update_isothermal(const MaterialIncrement &increment, MaterialRequest request,
                              MaterialResponse &response);
       /// update() with the adiabatic split (Armero–Simo).
-      void update_adiabatic(const MaterialIncrement &increment, MaterialRequest request,
+      [[gnu::visibility("hidden")]] void update_adiabatic(const MaterialIncrement &increment, MaterialRequest request,
                             MaterialResponse &response);
-      /// Trial state, yield test, return map and heat sources at (T, ΔT).
+      /// Trial state, yield test, return map and heat sources at (T, ΔT);
+      /// ΔT_ad and what its tangent needs only if @p adiabatic (a constant
+      /// at both callers: the isothermal update has neither).
       void evaluate(const MaterialIncrement &inc, double T, double dT, const Rotated &rotated,
-                    Trial &t) const;
-      /// Stress, state, and what @p request asks beyond it, from @p t.
-      void finish(const MaterialIncrement &inc, MaterialRequest request, Trial &t,
+                    bool adiabatic, Trial &t) const;
+      /// Stress, state, and what @p request asks beyond it, from @p t
+      /// (@p adiabatic as for evaluate()).
+      void finish(const MaterialIncrement &inc, MaterialRequest request, bool adiabatic, Trial &t,
                   MaterialResponse &response);
       /// σᵥ(ε̄, T): inline where the law is linear with linear or no softening.
       HardeningLaw::Value yield(const double eps, const double T) const
@@ -180,7 +185,7 @@ namespace anvil
       /// Δε̄ solving r(Δε̄) = q_tr − 3GΔε̄ − σᵥ(ε̄ₙ + Δε̄) − V(Δε̄) = 0 (0: the root
       /// is below working precision), with σᵥ and V at the returned Δε̄ in @p Y and
       /// @p V. @p Y0 is σᵥ at ε̄ₙ.
-      double return_map(double                     q_tr,
+      [[gnu::visibility("hidden")]] double return_map(double                     q_tr,
                         double                     G,
                         double                     T,
                         const PerzynaLaw::Rate    &rate,
