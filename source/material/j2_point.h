@@ -19,6 +19,7 @@
 #include <anvil/material/j2_plasticity.h>
 
 #include <cmath>
+#include <memory>
 
 namespace anvil
 {
@@ -116,7 +117,9 @@ namespace anvil
       }
       // Hidden (and return_map()): update() reaches them by a direct jump,
       // not through the PLT (an exported symbol of a shared library).
-      /// update() without the adiabatic split.
+      /// update() without the adiabatic split; @p simple: the instance for
+      /// J2Model::Kernel::simple (its constants, no branch on the laws).
+      template <bool simple>
       [[gnu::visibility("hidden")]] void update_isothermal(const MaterialIncrement &increment, MaterialRequest request,
                              MaterialResponse &response);
       /// update() with the adiabatic split (Armero–Simo).
@@ -125,17 +128,20 @@ namespace anvil
       /// Trial state, yield test, return map and heat sources at (T, ΔT);
       /// ΔT_ad and what its tangent needs only if @p adiabatic (a constant
       /// at both callers: the isothermal update has neither).
+      template <bool simple = false>
       void evaluate(const MaterialIncrement &inc, double T, double dT, const Rotated &rotated,
                     bool adiabatic, Trial &t) const;
       /// Stress, state, and what @p request asks beyond it, from @p t
       /// (@p adiabatic as for evaluate()).
+      template <bool simple = false>
       void finish(const MaterialIncrement &inc, MaterialRequest request, bool adiabatic, Trial &t,
                   MaterialResponse &response);
       /// σᵥ(ε̄, T): inline where the law is linear with linear or no softening.
+      template <bool simple = false>
       HardeningLaw::Value yield(const double eps, const double T) const
       {
         const J2Model::Kernel &k = model.kernel();
-        if (k.plain_yield)
+        if (simple || k.plain_yield)
           {
             // LinearForm::evaluate() at θ = 1, dθ/dT = 0 (1 x is x): the same bits.
             HardeningLaw::Value v;
@@ -198,14 +204,21 @@ namespace anvil
       SymmetricTensor<2, 3> stress_n, current;
       double                eps_n = 0, eps_c = 0;
       double                q_n = 0; // √(3/2)|dev σₙ|, kept with σₙ (the plastic work's start)
-      // ∂ΔT_ad/∂Δε and ∂ΔT_ad/∂σ̃ₙ at fixed temperature (adiabatic tangent).
-      SymmetricTensor<2, 3> adiabatic_strain_derivative, adiabatic_stress_derivative;
-      // ∂ΔT_ad/∂T at fixed Δε and σ̃ₙ (the fixed point's ∂f/∂x).
-      double adiabatic_temperature_derivative = 0;
-      // The last ΔT_ad found: the start of the next fixed-point iteration
-      // (a start only: the converged value does not depend on it beyond the
-      // iteration's 1e-12 tolerance).
-      double adiabatic_guess = 0;
+      /// What only the adiabatic update keeps (112 B), in a block of its own
+      /// that a point's first adiabatic update makes: the points of the
+      /// other scenes do not carry it (J2Point 344 → 240 B).
+      struct AdiabaticState
+      {
+        // ∂ΔT_ad/∂Δε and ∂ΔT_ad/∂σ̃ₙ at fixed temperature (adiabatic tangent).
+        SymmetricTensor<2, 3> strain_derivative, stress_derivative;
+        // ∂ΔT_ad/∂T at fixed Δε and σ̃ₙ (the fixed point's ∂f/∂x).
+        double temperature_derivative = 0;
+        // The last ΔT_ad found: the start of the next fixed-point iteration
+        // (a start only: the converged value does not depend on it beyond the
+        // iteration's 1e-12 tolerance).
+        double guess = 0;
+      };
+      std::unique_ptr<AdiabaticState> adiabatic_state;
     };
 
     MaterialPointError no_plastic_solution(double T);
