@@ -147,7 +147,8 @@ namespace anvil
             HardeningLaw::Value v;
             v.stress                 = k.yield.sigma0 + k.yield.h * eps;
             v.slope                  = k.yield.h;
-            v.temperature_derivative = 0. * k.yield.sigma0 + 0. * k.yield.h * eps;
+            // (simple: h ≥ 0 and ε̄ ≥ 0, so 0 σ₀ + 0 h ε̄ is +0, a constant.)
+            v.temperature_derivative = simple ? 0. : 0. * k.yield.sigma0 + 0. * k.yield.h * eps;
             return v;
           }
         return k.inline_yield ? k.yield.evaluate(eps, T) : model.hardening->evaluate(eps, T);
