@@ -56,22 +56,6 @@ namespace anvil
       if (((bits(R[0][2]) | bits(R[1][2]) | bits(R[2][0]) | bits(R[2][1]) | bits(sn[4]) | bits(sn[5]))
            << 1) == 0)
         {
-          // ΔR = I (no spin over the step: the bench's increments, cells at
-          // rest): σ̃ₙ = σₙ, as 1 x + 0 y = x (up to the sign of a zero sum).
-          // The in-plane off-diagonal pair is tested first: a rotating point
-          // pays one branch.
-          const std::uint64_t one = 0x3ff0000000000000; // the bits of 1.0
-          if (((bits(R[0][1]) | bits(R[1][0])) << 1) == 0 &&
-              ((bits(R[0][0]) ^ one) | (bits(R[1][1]) ^ one) | (bits(R[2][2]) ^ one)) == 0)
-            {
-              #pragma GCC unroll 6
-              for (unsigned int c = 0; c < 4; ++c)
-                rotated.trial[c] = sn[c];
-              rotated.trial[4] = rotated.trial[5] = 0;
-              rotated.lower[0]                    = sn[3];
-              rotated.lower[1] = rotated.lower[2] = 0;
-              return rotated;
-            }
           // Plane strain and axisymmetric: ΔR and σₙ are [2x2 block, 0; 0, (2,2)].
           // The products below are the general ones' nonzero terms (the others
           // add exact zeros), so the values are the same.
@@ -145,7 +129,7 @@ namespace anvil
       update_adiabatic(increment, request, response);
     }
 
-    [[gnu::noinline, gnu::no_stack_protector]] void J2Point::update_adiabatic(
+    [[gnu::noinline, gnu::no_stack_protector, gnu::optimize("no-tree-slp-vectorize")]] void J2Point::update_adiabatic(
       const MaterialIncrement &increment, const MaterialRequest request, MaterialResponse &response)
     {
       response.volume_ratio_sensitivity = SymmetricTensor<2, 3>();
