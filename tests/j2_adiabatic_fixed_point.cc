@@ -2,7 +2,7 @@
 // j2_plasticity.cc) checked from outside the iteration that finds it, and the
 // planar kinematics' kept zeros:
 //  1. an isothermal update at T + x, T_n-increment + x (the same increment)
-//     returns ΔT_ad = x and the same stress: the point's x is the fixed point
+//     has heat sources that give ΔT_ad = x, and the same stress: the point's x is the fixed point
 //     whatever its iteration (Newton first step from the last tangent's
 //     ∂f/∂x, then secant) did, to the iteration's tolerance (1e-12);
 //  2. the same increment again on the same point, now starting from its last
@@ -67,11 +67,15 @@ namespace
       inc.temperature_increment += x;
       MaterialResponse r;
       iso->update(inc, request, r);
-      e.fixed_point = std::abs(r.adiabatic_temperature_increment - x) / (1 + std::abs(x));
+      // ΔT_ad(T + x) from the isothermal update's heat sources (it does not
+      // form ΔT_ad itself): ρ₀c ΔT_ad / J = Δt (χ Ẇirr + Ẇthel), eq. 20–22.
+      const double dT_ad = inc.time_step * inc.volume_ratio *
+                           (r.plastic_dissipation_rate + r.thermoelastic_heating_rate) /
+                           (model.density() * model.heat_capacity());
+      e.fixed_point = std::abs(dT_ad - x) / (1 + std::abs(x));
       e.stress      = relative(r.stress, adiabatic.stress);
       if (print)
-        std::cout << "    x = " << x << " K, dT_ad(T + x) = " << r.adiabatic_temperature_increment
-                  << " K" << std::endl;
+        std::cout << "    x = " << x << " K, dT_ad(T + x) = " << dT_ad << " K" << std::endl;
     }
     // 2. Repeated updates (the point now starts from its x and ∂f/∂x), and a
     // sequence of increments against fresh points.

@@ -18,18 +18,22 @@ namespace anvil
 {
   namespace j2
   {
+    template <bool simple>
     [[gnu::always_inline]] inline void J2Point::evaluate(const MaterialIncrement &inc, const double T, const double dT,
-                                  const Rotated &rotated, Trial &t) const
+                                  const Rotated &rotated, const bool adiabatic, Trial &t) const
     {
       const ElasticLaw &el   = model.elastic;
-      const double      K    = el.bulk_modulus(T);
-      const double      G    = el.shear_modulus(T);
+      const J2Model::Kernel &k = model.kernel();
+      // (simple: the constant laws' values, K₀ g, G₀ g, β₀ f, and (β₀ f) ΔT as
+      // thermal_strain() forms it: the same bits.)
+      const double      K    = simple ? k.K : el.bulk_modulus(T);
+      const double      G    = simple ? k.G : el.shear_modulus(T);
       // Thermal strain over the step and its T-derivative (β(T), eq. 19).
-      const double      eth  = el.thermal_strain(T, dT);
+      const double      eth  = simple ? k.beta * dT : el.thermal_strain(T, dT);
       t.T = T, t.dT = dT, t.K = K, t.G = G, t.eth = eth;
-      t.deth = el.thermal_strain_derivative(T, dT);
-      t.beta = el.thermal_expansion(T);
-      if (!(G > 0 && K > 0))
+      t.deth = simple ? k.beta : el.thermal_strain_derivative(T, dT);
+      t.beta = simple ? k.beta : el.thermal_expansion(T);
+      if (!simple && !(G > 0 && K > 0))
         throw MaterialPointError(
           "the elastic moduli are not positive at T = " + std::to_string(T) +
           " K (modulus temperature factor g(T) = " +
@@ -70,9 +74,9 @@ namespace anvil
       PerzynaLaw::Rate    rate;
       bool                linear_return = false;
       unsigned int        iterations    = 0;
-      if (model.plastic)
+      if (simple || model.plastic)
         {
-          Y = Y_start = yield(eps_n, T);
+          Y = Y_start = yield<simple>(eps_n, T);
           if (!(Y.stress > 0))
             throw MaterialPointError("the yield stress is " + std::to_string(Y.stress) +
                                      " MPa <= 0 at T = " + std::to_string(T) +
@@ -86,19 +90,19 @@ namespace anvil
             }
           if (q_trial > Y.stress)
             {
-              if (model.viscosity.active())
+              if (!simple && model.viscosity.active())
                 {
                   PerzynaLaw::Rate r = model.viscosity.at(T, inc.time_step);
                   rate                     = r;
                 }
               else
                 rate.dt = inc.time_step;
-              const J2Model::Kernel &k = model.kernel();
-              if (k.closed_form || (k.linear && !rate.active() && !model.johnson_cook_rate.active()))
+              if (simple || k.closed_form ||
+                  (k.linear && !rate.active() && !model.johnson_cook_rate.active()))
                 {
                   // Linear hardening, rate-independent: r is linear in Δε̄.
                   const double h = Y_start.slope;
-                  if (!(h >= 0))
+                  if (!simple && !(h >= 0))
                     {
                       const double hi = q_trial / (3 * G);
                       if (q_trial - 3 * G * hi - yield(eps_n + hi, T).stress > 0)
@@ -139,7 +143,7 @@ namespace anvil
           work                 = 0.5 * (q_start + q_end) * dp;
           // d(work)/dq_trial with dΔε̄/dq_tr = 1/(3G + H), dq_end/dq_tr = H/(3G + H):
           // the adiabatic tangent's only (finish()).
-          if (inc.adiabatic)
+          if (adiabatic)
             dwork_dq = 0.5 * (H * dp + q_start + q_end) / (3 * G + H);
         }
       t.work = work, t.dwork_dq = dwork_dq;
@@ -147,10 +151,16 @@ namespace anvil
       // with c at constant stress, the stress-producing part tr(Δε − βΔT I);
       // with c at constant volume (the seed's eq. 8 and 22), all of tr Δε.
       t.tr_rev = el.capacity_at_constant_volume ? tr_de + 3 * eth : tr_de;
-      // Sources per current volume, capacity per reference volume (ρ₀c/J per current volume).
-      t.rho_c = el.density * el.heat_capacity / inc.volume_ratio;
-      t.adiabatic_temperature_increment =
-        (el.taylor_quinney * work - 3 * K * t.beta * T * t.tr_rev) / t.rho_c;
+      // Sources per current volume, capacity per reference volume (ρ₀c/J per
+      // current volume). Only the adiabatic update reads ΔT_ad (two divisions
+      // of the isothermal one's eleven).
+      t.rho_c = t.adiabatic_temperature_increment = 0;
+      if (adiabatic)
+        {
+          t.rho_c = el.density * el.heat_capacity / inc.volume_ratio;
+          t.adiabatic_temperature_increment =
+            (el.taylor_quinney * work - 3 * K * t.beta * T * t.tr_rev) / t.rho_c;
+        }
     }
   } // namespace j2
 } // namespace anvil

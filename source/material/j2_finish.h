@@ -75,8 +75,9 @@ namespace anvil
       }
     } // namespace
 
-    [[gnu::always_inline]] inline void J2Point::finish(const MaterialIncrement &inc, const MaterialRequest request, Trial &t,
-                                MaterialResponse &response)
+    template <bool simple>
+    [[gnu::always_inline]] inline void J2Point::finish(const MaterialIncrement &inc, const MaterialRequest request,
+                                const bool adiabatic, Trial &t, MaterialResponse &response)
     {
       const ElasticLaw &el = model.elastic;
       const double      T = t.T, K = t.K, G = t.G, beta = t.beta, deth = t.deth;
@@ -98,7 +99,7 @@ namespace anvil
       }
       if (t.linear_return && (request & request_temperature_derivative))
         {
-          HardeningLaw::Value y = yield(eps_n + dp, T);
+          HardeningLaw::Value y = yield<simple>(eps_n + dp, T);
           Y                           = y;
         }
 
@@ -132,7 +133,7 @@ namespace anvil
       eps_c   = eps_n + dp;
       response.equivalent_plastic_strain = eps_c;
 
-      write_tangent(request, inc.adiabatic, K, G, H, dp, q_trial, n, response);
+      write_tangent(request, adiabatic, K, G, H, dp, q_trial, n, response);
 
       if (request & request_temperature_derivative)
         {
@@ -181,7 +182,7 @@ namespace anvil
         }
 
       const double tr_rev = t.tr_rev, rho_c = t.rho_c;
-      if (inc.adiabatic && (request & request_tangent))
+      if (adiabatic && (request & request_tangent))
         {
           // Partial derivatives of ΔT_ad at fixed T: ∂q_tr/∂Δε = √6 G n,
           // ∂q_tr/∂σ̃ₙ = √(3/2) n, ∂tr_rev/∂Δε = I.
@@ -190,10 +191,11 @@ namespace anvil
           for (unsigned int c = 0; c < 6; ++c)
             n_t.access_raw_entry(c) = n[c];
           const double chi = el.taylor_quinney;
-          adiabatic_strain_derivative =
+          AdiabaticState &state = *adiabatic_state; // (made by update_adiabatic())
+          state.strain_derivative =
             (chi * t.dwork_dq * std::sqrt(6.) * G * n_t - 3 * K * beta * T * unit_symmetric_tensor<3>()) /
             rho_c;
-          adiabatic_stress_derivative = (chi * t.dwork_dq * std::sqrt(1.5) / rho_c) * n_t;
+          state.stress_derivative = (chi * t.dwork_dq * std::sqrt(1.5) / rho_c) * n_t;
           // ∂ΔT_ad/∂T at fixed Δε, σ̃ₙ (the adiabatic tangent's request has ∂/∂T,
           // so Y and V carry theirs): K' = gK, β'(T) (eq. 19), tr_rev' = −3
           // ∂Δε_th/∂T at constant stress, and the plastic work's, through Δε̄,
@@ -224,7 +226,7 @@ namespace anvil
           const double dK      = g * K;
           const double dbeta   = el.thermal_expansion_derivative(T);
           const double dtr_rev = el.capacity_at_constant_volume ? 0. : -3 * deth;
-          adiabatic_temperature_derivative =
+          state.temperature_derivative =
             (chi * dwork_dT - 3 * ((dK * beta + K * dbeta) * T * tr_rev + K * beta * tr_rev +
                                    K * beta * T * dtr_rev)) /
             rho_c;

@@ -94,7 +94,8 @@ namespace anvil
     // memory (register pressure of the whole function; J2 bench, 3D plastic,
     // stress + tangent, with the locals and early unrolling of evaluate(): 492 → 474
     // instructions per update).
-    [[gnu::noinline, gnu::no_stack_protector]] void J2Point::update_isothermal(
+    template <bool simple>
+    [[gnu::noinline, gnu::no_stack_protector, gnu::optimize("no-tree-slp-vectorize")]] void J2Point::update_isothermal(
       const MaterialIncrement &increment, const MaterialRequest request, MaterialResponse &response)
     {
       response.volume_ratio_sensitivity = SymmetricTensor<2, 3>();
@@ -103,8 +104,9 @@ namespace anvil
       // through the return map.
       keep_for_audit(increment, rotated);
       Trial t;
-      evaluate(increment, increment.temperature, increment.temperature_increment, rotated, t);
-      finish(increment, request, t, response);
+      evaluate<simple>(increment, increment.temperature, increment.temperature_increment, rotated,
+                       false, t);
+      finish<simple>(increment, request, false, t, response);
     }
 
     // update_isothermal() and update_adiabatic() have no stack canary
@@ -119,14 +121,21 @@ namespace anvil
       // for the other (21 instructions per isothermal update when
       // update_adiabatic()'s body was here).
       if (!increment.adiabatic)
-        return update_isothermal(increment, request, response);
+        {
+          if (model.kernel().simple)
+            return update_isothermal<true>(increment, request, response);
+          return update_isothermal<false>(increment, request, response);
+        }
       update_adiabatic(increment, request, response);
     }
 
-    [[gnu::noinline, gnu::no_stack_protector]] void J2Point::update_adiabatic(
+    [[gnu::noinline, gnu::no_stack_protector, gnu::optimize("no-tree-slp-vectorize")]] void J2Point::update_adiabatic(
       const MaterialIncrement &increment, const MaterialRequest request, MaterialResponse &response)
     {
       response.volume_ratio_sensitivity = SymmetricTensor<2, 3>();
+      if (!adiabatic_state)
+        adiabatic_state = std::make_unique<AdiabaticState>();
+      AdiabaticState &state = *adiabatic_state;
       Rotated rotated = rotate(increment.rotation_increment); // independent of T: once for every return map below
       Trial         t;
       // Armero–Simo: the step's own heating changes the temperature the
@@ -143,15 +152,15 @@ namespace anvil
       // previous step's): within Newton the state moves little, so the
       // first residual is already small and the secant needs fewer return
       // maps than from 0. The first step is Newton's with the last tangent's
-      // ∂f/∂x (adiabatic_temperature_derivative; 0 before the first: the
+      // ∂f/∂x (state.temperature_derivative; 0 before the first: the
       // plain fixed point): x + (f(x) − x)/(1 − ∂f/∂x).
-      const double first_slope = 1 - adiabatic_temperature_derivative;
+      const double first_slope = 1 - state.temperature_derivative;
       const double first_scale = first_slope > 0.5 && first_slope < 2 ? 1 / first_slope : 1.;
-      double       x0 = 0, f0 = 0, x1 = adiabatic_guess, f1 = 0;
+      double       x0 = 0, f0 = 0, x1 = state.guess, f1 = 0;
       for (unsigned int it = 0; it < 50; ++it)
         {
           evaluate(increment, increment.temperature + x1, increment.temperature_increment + x1,
-                   rotated, t);
+                   rotated, true, t);
           f1 = t.adiabatic_temperature_increment - x1;
           if (std::abs(f1) <= 1e-12 * (1 + std::abs(x1)))
             break;
@@ -162,19 +171,19 @@ namespace anvil
           if (it == 49)
             throw MaterialPointError("the adiabatic temperature change did not converge");
         }
-      finish(increment, inner, t, response);
+      finish(increment, inner, true, t, response);
       keep_for_audit(increment, rotated);
       response.adiabatic_temperature_increment = x1;
-      adiabatic_guess                          = x1;
+      state.guess                              = x1;
       if (tangent)
         {
           // Consistent tangent of the adiabatic update: with x = f(Δε, σ̃ₙ, x),
           //   dx/dΔε = ∂f/∂Δε / (1 − ∂f/∂x),  dσ/dΔε = C + ∂σ/∂T ⊗ dx/dΔε
           // (and likewise for σ̃ₙ); ∂f/∂x in closed form from the tangent's
-          // finish() (adiabatic_temperature_derivative).
-          const SymmetricTensor<2, 3> &df_de = adiabatic_strain_derivative,
-                                      &df_ds = adiabatic_stress_derivative;
-          const double                 df_dx = adiabatic_temperature_derivative;
+          // finish() (state.temperature_derivative).
+          const SymmetricTensor<2, 3> &df_de = state.strain_derivative,
+                                      &df_ds = state.stress_derivative;
+          const double                 df_dx = state.temperature_derivative;
           const double                amplification = 1 / (1 - df_dx);
           const SymmetricTensor<2, 3> &dsigma_dT = response.stress_temperature_derivative;
           // ∂f/∂σ̃ₙ ∝ the plastic work's n: zero at an elastic point, whose
@@ -231,6 +240,12 @@ namespace anvil
       const HardeningLaw::LinearForm &y = kernel_cache.yield;
       kernel_cache.plain_yield =
         kernel_cache.inline_yield && !(y.theta_linear && (y.soft_sigma0 || y.soft_h));
+      const double T = elastic.reference_temperature; // (any: the laws are constant)
+      kernel_cache.K    = elastic.bulk_modulus(T);
+      kernel_cache.G    = elastic.shear_modulus(T);
+      kernel_cache.beta = elastic.thermal_expansion(T);
+      kernel_cache.simple = kernel_cache.plain_yield && kernel_cache.closed_form && y.h >= 0 &&
+                            elastic.constant() && kernel_cache.K > 0 && kernel_cache.G > 0;
     });
   }
 

@@ -19,6 +19,7 @@
 #include <anvil/material/j2_plasticity.h>
 
 #include <cmath>
+#include <memory>
 
 namespace anvil
 {
@@ -114,29 +115,40 @@ namespace anvil
         for (unsigned int c = 0; c < 6; ++c)
           de[c] = dstrain[c] - (c < 3 ? t.eth : 0.);
       }
-      /// update() without the adiabatic split.
-      void update_isothermal(const MaterialIncrement &increment, MaterialRequest request,
+      // Hidden (and return_map()): update() reaches them by a direct jump,
+      // not through the PLT (an exported symbol of a shared library).
+      /// update() without the adiabatic split; @p simple: the instance for
+      /// J2Model::Kernel::simple (its constants, no branch on the laws).
+      template <bool simple>
+      [[gnu::visibility("hidden")]] void update_isothermal(const MaterialIncrement &increment, MaterialRequest request,
                              MaterialResponse &response);
       /// update() with the adiabatic split (Armero–Simo).
-      void update_adiabatic(const MaterialIncrement &increment, MaterialRequest request,
+      [[gnu::visibility("hidden")]] void update_adiabatic(const MaterialIncrement &increment, MaterialRequest request,
                             MaterialResponse &response);
-      /// Trial state, yield test, return map and heat sources at (T, ΔT).
+      /// Trial state, yield test, return map and heat sources at (T, ΔT);
+      /// ΔT_ad and what its tangent needs only if @p adiabatic (a constant
+      /// at both callers: the isothermal update has neither).
+      template <bool simple = false>
       void evaluate(const MaterialIncrement &inc, double T, double dT, const Rotated &rotated,
-                    Trial &t) const;
-      /// Stress, state, and what @p request asks beyond it, from @p t.
-      void finish(const MaterialIncrement &inc, MaterialRequest request, Trial &t,
+                    bool adiabatic, Trial &t) const;
+      /// Stress, state, and what @p request asks beyond it, from @p t
+      /// (@p adiabatic as for evaluate()).
+      template <bool simple = false>
+      void finish(const MaterialIncrement &inc, MaterialRequest request, bool adiabatic, Trial &t,
                   MaterialResponse &response);
       /// σᵥ(ε̄, T): inline where the law is linear with linear or no softening.
+      template <bool simple = false>
       HardeningLaw::Value yield(const double eps, const double T) const
       {
         const J2Model::Kernel &k = model.kernel();
-        if (k.plain_yield)
+        if (simple || k.plain_yield)
           {
             // LinearForm::evaluate() at θ = 1, dθ/dT = 0 (1 x is x): the same bits.
             HardeningLaw::Value v;
             v.stress                 = k.yield.sigma0 + k.yield.h * eps;
             v.slope                  = k.yield.h;
-            v.temperature_derivative = 0. * k.yield.sigma0 + 0. * k.yield.h * eps;
+            // (simple: h ≥ 0 and ε̄ ≥ 0, so 0 σ₀ + 0 h ε̄ is +0, a constant.)
+            v.temperature_derivative = simple ? 0. : 0. * k.yield.sigma0 + 0. * k.yield.h * eps;
             return v;
           }
         return k.inline_yield ? k.yield.evaluate(eps, T) : model.hardening->evaluate(eps, T);
@@ -180,7 +192,7 @@ namespace anvil
       /// Δε̄ solving r(Δε̄) = q_tr − 3GΔε̄ − σᵥ(ε̄ₙ + Δε̄) − V(Δε̄) = 0 (0: the root
       /// is below working precision), with σᵥ and V at the returned Δε̄ in @p Y and
       /// @p V. @p Y0 is σᵥ at ε̄ₙ.
-      double return_map(double                     q_tr,
+      [[gnu::visibility("hidden")]] double return_map(double                     q_tr,
                         double                     G,
                         double                     T,
                         const PerzynaLaw::Rate    &rate,
@@ -193,14 +205,21 @@ namespace anvil
       SymmetricTensor<2, 3> stress_n, current;
       double                eps_n = 0, eps_c = 0;
       double                q_n = 0; // √(3/2)|dev σₙ|, kept with σₙ (the plastic work's start)
-      // ∂ΔT_ad/∂Δε and ∂ΔT_ad/∂σ̃ₙ at fixed temperature (adiabatic tangent).
-      SymmetricTensor<2, 3> adiabatic_strain_derivative, adiabatic_stress_derivative;
-      // ∂ΔT_ad/∂T at fixed Δε and σ̃ₙ (the fixed point's ∂f/∂x).
-      double adiabatic_temperature_derivative = 0;
-      // The last ΔT_ad found: the start of the next fixed-point iteration
-      // (a start only: the converged value does not depend on it beyond the
-      // iteration's 1e-12 tolerance).
-      double adiabatic_guess = 0;
+      /// What only the adiabatic update keeps (112 B), in a block of its own
+      /// that a point's first adiabatic update makes: the points of the
+      /// other scenes do not carry it (J2Point 344 → 240 B).
+      struct AdiabaticState
+      {
+        // ∂ΔT_ad/∂Δε and ∂ΔT_ad/∂σ̃ₙ at fixed temperature (adiabatic tangent).
+        SymmetricTensor<2, 3> strain_derivative, stress_derivative;
+        // ∂ΔT_ad/∂T at fixed Δε and σ̃ₙ (the fixed point's ∂f/∂x).
+        double temperature_derivative = 0;
+        // The last ΔT_ad found: the start of the next fixed-point iteration
+        // (a start only: the converged value does not depend on it beyond the
+        // iteration's 1e-12 tolerance).
+        double guess = 0;
+      };
+      std::unique_ptr<AdiabaticState> adiabatic_state;
     };
 
     MaterialPointError no_plastic_solution(double T);

@@ -31,6 +31,8 @@ namespace anvil
     {
       return factor.derivative(T) / factor.value(T);
     }
+    /// g(T) and f(T) constant: K(T) = K₀ g, G(T) = G₀ g, β(T) = β₀ f everywhere.
+    bool constant() const { return factor.is_constant() && beta_factor.is_constant(); }
     double bulk_modulus() const { return K0; }
     double shear_modulus() const { return G0; }
 

@@ -157,6 +157,12 @@ namespace anvil
       /// linear without viscosity or Johnson-Cook rate: the return map in
       /// closed form at every plastic update (one test, not three).
       bool closed_form = false;
+      /// Constant moduli and expansion (ElasticLaw::constant()), a plain
+      /// yield with h ≥ 0 in closed form: the isothermal update's own
+      /// instance reads K, G, β here (the laws' products, the same bits)
+      /// and has no branch on the laws.
+      bool   simple = false;
+      double K = 0, G = 0, beta = 0;
     };
     /// Valid once a point exists (create_point(s) prepares it).
     const Kernel &kernel() const { return kernel_cache; }
