@@ -15,6 +15,7 @@
 #include <anvil/geometry/geometry.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -95,14 +96,18 @@ namespace anvil
   {
     const unsigned int n_vertices = GeometryInfo<dim>::vertices_per_face;
     // Nodes by their x dof, then numbered in the order of their reference
-    // coordinates (independent of the partition).
+    // coordinates (independent of the partition). Every process numbers the
+    // whole gathered surface: kept in flat arrays sorted once (a map of the
+    // nodes looked up twice per comparison cost 217 M instructions per
+    // process on the 48 k-DoF-per-body strip, at np 1 and at np 2 alike).
     struct RawNode
     {
+      types::global_dof_index                  key = 0; // the x dof
       std::array<types::global_dof_index, dim> dofs;
       Point<dim>                               X;
       unsigned int                             body = 0;
     };
-    std::map<types::global_dof_index, RawNode>                    raw;
+    std::vector<RawNode>                                          raw;
     std::vector<std::pair<types::boundary_id, std::vector<types::global_dof_index>>> raw_faces;
     const unsigned int stride = 2 + n_vertices * 2 * dim;
     for (const auto &part : all)
@@ -118,37 +123,51 @@ namespace anvil
                   n.dofs[c] = static_cast<types::global_dof_index>(part[i + 2 + k * 2 * dim + c]);
                   n.X[c]    = part[i + 2 + k * 2 * dim + dim + c];
                 }
-              raw[n.dofs[0]] = n;
-              keys.push_back(n.dofs[0]);
+              n.key = n.dofs[0];
+              raw.push_back(n);
+              keys.push_back(n.key);
             }
           raw_faces.emplace_back(static_cast<types::boundary_id>(part[i]), keys);
         }
-    std::vector<types::global_dof_index> sorted;
-    for (const auto &[key, n] : raw)
-      sorted.push_back(key);
-    std::sort(sorted.begin(), sorted.end(), [&](const auto a, const auto b) {
-      const Point<dim> &A = raw[a].X, &B = raw[b].X;
+    // One entry per node, the last one met (as a map's assignment kept it).
+    std::stable_sort(raw.begin(), raw.end(), [](const RawNode &a, const RawNode &b) { return a.key < b.key; });
+    {
+      std::size_t kept = 0;
+      for (std::size_t i = 0; i < raw.size(); ++i)
+        if (i + 1 == raw.size() || raw[i + 1].key != raw[i].key)
+          raw[kept++] = raw[i];
+      raw.resize(kept);
+    }
+    std::sort(raw.begin(), raw.end(), [](const RawNode &a, const RawNode &b) {
       for (unsigned int c = 0; c < dim; ++c)
-        if (A[c] != B[c])
-          return A[c] < B[c];
-      if (raw[a].body != raw[b].body) // touching bodies: coincident vertices
-        return raw[a].body < raw[b].body;
-      return a < b;
+        if (a.X[c] != b.X[c])
+          return a.X[c] < b.X[c];
+      if (a.body != b.body) // touching bodies: coincident vertices
+        return a.body < b.body;
+      return a.key < b.key;
     });
-    std::map<types::global_dof_index, unsigned int> number;
+    // (x dof, node number), by x dof.
+    std::vector<std::pair<types::global_dof_index, unsigned int>> number(raw.size());
     node_reference.clear();
     node_dofs.clear();
     node_owned.clear();
     node_mine.clear();
     node_body.clear();
-    for (const auto key : sorted)
+    node_reference.reserve(raw.size());
+    node_dofs.reserve(raw.size());
+    node_body.reserve(raw.size());
+    for (const auto &n : raw)
       {
-        number[key] = node_reference.size();
-        node_body.push_back(raw[key].body);
-        node_reference.push_back(raw[key].X);
-        node_dofs.push_back(raw[key].dofs);
-        node_owned.push_back(owned.is_element(raw[key].dofs[0]));
+        number[node_reference.size()] = {n.key, static_cast<unsigned int>(node_reference.size())};
+        node_body.push_back(n.body);
+        node_reference.push_back(n.X);
+        node_dofs.push_back(n.dofs);
+        node_owned.push_back(owned.is_element(n.key));
       }
+    std::sort(number.begin(), number.end());
+    const auto number_of = [&number](const types::global_dof_index key) {
+      return std::lower_bound(number.begin(), number.end(), std::make_pair(key, 0u))->second;
+    };
     faces.clear();
     surfaces.clear();
     largest_face = 0;
@@ -158,7 +177,7 @@ namespace anvil
         Face face;
         face.boundary = b;
         for (const auto k : keys)
-          face.nodes.push_back(number[k]);
+          face.nodes.push_back(number_of(k));
         surfaces[b].faces.push_back(faces.size());
         for (const auto n : face.nodes)
           surfaces[b].nodes.push_back(n);

@@ -21,6 +21,7 @@
 #include <anvil/material/kinematics.h>
 #include <anvil/mechanics/mechanical_problem.h>
 #include <anvil/mechanics/serial_matrix.h>
+#include <anvil/mechanics/sparsity_rows.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -225,23 +226,15 @@ namespace anvil
     // each new contact pattern (the tube's ~180 on its crush) copies them
     // instead of looping over the cells again (~6.6 M instructions there,
     // most of it condensing each cell's dofs through AffineConstraints).
+    // Built without a DynamicSparsityPattern (sparsity_rows.h): the owned
+    // rows, then the others each led by its dof.
     const auto fill_cell_pattern = [&]() {
-      if (!cell_pattern.empty())
-        return;
-      DynamicSparsityPattern cells(locally_relevant_dofs);
-      DoFTools::make_sparsity_pattern(dof_handler, cells, constraints, false);
-      cell_pattern.resize(locally_relevant_dofs.n_elements());
-      unsigned int k = 0;
-      for (const auto row : locally_relevant_dofs)
-        {
-          auto &columns = cell_pattern[k++];
-          columns.reserve(cells.row_length(row));
-          for (auto entry = cells.begin(row); entry != cells.end(row); ++entry)
-            columns.push_back(entry->column());
-        }
+      if (cell_pattern.empty())
+        make_cell_rows(dof_handler, constraints, locally_owned_dofs, cell_pattern);
     };
     // deal.II's route: a DynamicSparsityPattern, distributed to the rows'
-    // owners, then the Epetra graph from it by global indices.
+    // owners, then the Epetra graph from it by global indices (owned dofs
+    // not contiguous, and ANVIL_PATTERN_CHECK's reference).
     const auto by_dynamic_pattern = [&](TrilinosWrappers::SparseMatrix &matrix) {
       IndexSet rows = locally_relevant_dofs;
       std::vector<types::global_dof_index> extra;
@@ -252,18 +245,7 @@ namespace anvil
       rows.add_indices(extra.begin(), extra.end());
       rows.compress();
       DynamicSparsityPattern dsp(rows);
-      if (rows == locally_relevant_dofs)
-        {
-          fill_cell_pattern();
-          unsigned int k = 0;
-          for (const auto row : locally_relevant_dofs)
-            {
-              const auto &columns = cell_pattern[k++];
-              dsp.add_entries(row, columns.begin(), columns.end(), true);
-            }
-        }
-      else // contact rows owned elsewhere: the cells' loop into the wider row set
-        DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
+      DoFTools::make_sparsity_pattern(dof_handler, dsp, constraints, false);
       for (const auto &g : groups)
         constraints.add_entries_local_to_global(g, dsp, false);
       SparsityTools::distribute_sparsity_pattern(dsp, locally_owned_dofs, mpi_communicator, rows);
@@ -275,31 +257,43 @@ namespace anvil
       if (!contact)
         std::vector<std::vector<types::global_dof_index>>().swap(cell_pattern);
     };
-    if (Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
+    // Test only (ANVIL_PATTERN_CHECK): the same graph as deal.II's route?
+    const auto check_pattern = [&]() {
+      static const bool check = std::getenv("ANVIL_PATTERN_CHECK") != nullptr;
+      if (!check)
+        return;
+      TrilinosWrappers::SparseMatrix reference;
+      by_dynamic_pattern(reference);
+      const std::string difference = compare_graphs(system_matrix, reference);
+      const bool        equal = Utilities::MPI::min(difference.empty() ? 1 : 0, mpi_communicator) == 1;
+      AssertThrow(equal, ExcMessage("ANVIL_PATTERN_CHECK: " +
+                                    (difference.empty() ? "another process differs" : difference)));
+      if (Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
+        std::printf("ANVIL_PATTERN_CHECK: %u rows, %u entries, equal to deal.II's\n",
+                    static_cast<unsigned int>(system_matrix.m()),
+                    static_cast<unsigned int>(system_matrix.n_nonzero_elements()));
+    };
+    if (!locally_owned_dofs.is_contiguous())
       {
         by_dynamic_pattern(system_matrix);
         release_cell_pattern();
         return;
       }
+    fill_cell_pattern();
+    // Several processes: each process's own rows, those owned elsewhere sent
+    // to their owners (the DynamicSparsityPattern route cost 589 M
+    // instructions per rank on the 48 k-DoF-per-body strip at np 2).
     // One process: the graph straight from the kept cell rows and the
     // contact couplings (serial_matrix.cc): the full tube crush's 177
     // patterns cost 2.9 G instructions by deal.II's route, 2.0 G of it in
     // the DynamicSparsityPattern, the global-index insertion and the sort.
-    fill_cell_pattern();
-    make_serial_matrix(cell_pattern, groups, constraints,
-                       locally_owned_dofs.make_trilinos_map(mpi_communicator, false), system_matrix);
-    // Test only (ANVIL_PATTERN_CHECK): the same graph as deal.II's route?
-    static const bool check = std::getenv("ANVIL_PATTERN_CHECK") != nullptr;
-    if (check)
-      {
-        TrilinosWrappers::SparseMatrix reference;
-        by_dynamic_pattern(reference);
-        const std::string difference = compare_graphs(system_matrix, reference);
-        AssertThrow(difference.empty(), ExcMessage("ANVIL_PATTERN_CHECK: " + difference));
-        std::printf("ANVIL_PATTERN_CHECK: %u rows, %u entries, equal to deal.II's\n",
-                    static_cast<unsigned int>(system_matrix.m()),
-                    static_cast<unsigned int>(system_matrix.n_nonzero_elements()));
-      }
+    if (Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
+      make_distributed_matrix(cell_pattern, groups, constraints, locally_owned_dofs, mpi_communicator,
+                              system_matrix);
+    else
+      make_serial_matrix(cell_pattern, groups, constraints,
+                         locally_owned_dofs.make_trilinos_map(mpi_communicator, false), system_matrix);
+    check_pattern();
     release_cell_pattern();
   }
 
