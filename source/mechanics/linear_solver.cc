@@ -17,6 +17,7 @@
 #include <anvil/mechanics/mechanical_problem.h>
 
 DEAL_II_DISABLE_EXTRA_DIAGNOSTICS
+#include <Epetra_CrsMatrix.h>
 #include <Epetra_MultiVector.h>
 #include <Teuchos_ParameterList.hpp>
 DEAL_II_ENABLE_EXTRA_DIAGNOSTICS
@@ -24,6 +25,41 @@ DEAL_II_ENABLE_EXTRA_DIAGNOSTICS
 namespace anvil
 {
   using namespace dealii;
+
+  namespace
+  {
+    /// Diagnostics (one process): ANVIL_KRYLOV_DUMP=folder writes every
+    /// iterative solve's system to folder/system_<k>.bin: int n, int entries,
+    /// int offsets[n + 1], int columns (global), double values, double b[n],
+    /// int modes, the modes (rigid-body then isochoric, n doubles each), so
+    /// that contrib/bench/amg_replay.cc can try preconditioners on one solve.
+    void dump_system(const std::string &folder, const Epetra_CrsMatrix &K, const TrilinosWrappers::MPI::Vector &b,
+                     const std::vector<std::vector<double>> &modes)
+    {
+      static int count = 0;
+      int       *offsets = nullptr, *columns = nullptr;
+      double    *values  = nullptr;
+      AssertThrow(K.Comm().NumProc() == 1 && K.ExtractCrsDataPointers(offsets, columns, values) == 0,
+                  ExcMessage("ANVIL_KRYLOV_DUMP: one process only"));
+      const int        n = K.NumMyRows(), entries = offsets[n];
+      std::vector<int> global(entries);
+      for (int k = 0; k < entries; ++k)
+        global[k] = K.ColMap().GID(columns[k]);
+      FILE *const f = std::fopen((folder + "/system_" + std::to_string(count++) + ".bin").c_str(), "wb");
+      AssertThrow(f, ExcMessage("ANVIL_KRYLOV_DUMP: cannot write to " + folder));
+      const int m = modes.size();
+      std::fwrite(&n, sizeof(int), 1, f);
+      std::fwrite(&entries, sizeof(int), 1, f);
+      std::fwrite(offsets, sizeof(int), n + 1, f);
+      std::fwrite(global.data(), sizeof(int), entries, f);
+      std::fwrite(values, sizeof(double), entries, f);
+      std::fwrite(b.trilinos_vector()[0], sizeof(double), n, f);
+      std::fwrite(&m, sizeof(int), 1, f);
+      for (const auto &mode : modes)
+        std::fwrite(mode.data(), sizeof(double), n, f);
+      std::fclose(f);
+    }
+  } // namespace
 
   template <int dim>
   unsigned int MechanicalProblem<dim>::solve_linear_system(TrilinosWrappers::MPI::Vector &du)
@@ -93,6 +129,9 @@ namespace anvil
     settings.coarse_size           = parameters.amg_coarse_size;
     settings.plain_aggregation     = parameters.amg_plain_aggregation;
     const auto modes     = [&]() { return rigid_body_modes(mapping, dof_handler, &solution, isochoric); };
+    if (const char *folder = std::getenv("ANVIL_KRYLOV_DUMP"))
+      dump_system(folder, system_matrix.trilinos_matrix(), system_rhs,
+                  rigid_body_modes(mapping, dof_handler, &solution, true).modes);
     const unsigned int iterations = amg.solve(system_matrix, du, system_rhs, modes, settings);
     // Benchmarks: each solve's count (the averages hide the restarts).
     if (std::getenv("ANVIL_KRYLOV_LOG") && Utilities::MPI::this_mpi_process(mpi_communicator) == 0)

@@ -1,0 +1,104 @@
+// solve_gmres() gives up on a stalled solve (amg_solver.cc, StallControl:
+// the residual not halved over two restart cycles) instead of running to the
+// iteration cap, and still lets a slow but steady solve converge.
+// The preconditioner is ML on the identity (n below ML's coarse size: one
+// level, solved by KLU, so P = I exactly), and the closed forms are GMRES's on
+// I + rho S, S the cyclic shift (S e_i = e_{i+1 mod n}, unitary):
+//   - rho = infinity, i.e. K = S, b = e_0: K x for x in the Krylov space
+//     span{e_0 .. e_{m-1}} lies in span{e_1 .. e_m}, orthogonal to b, so
+//     GMRES(m) makes no progress at all for m < n: |r| = |b| at every step.
+//     Expected: NoConvergence at step 2 m (+1), not at the cap of 1000.
+//   - rho = 0.97: the polynomial (1 - z)^k gives |r_k| <= rho^k |b| (S
+//     unitary), also across restarts, so two cycles of m = 28 reduce the
+//     residual by at least 0.97^56 = 0.18 < 1/2: the stop never fires and
+//     GMRES reaches 1e-8 within ln(1e-8)/ln(0.97) = 605 iterations.
+#include <deal.II/base/index_set.h>
+#include <deal.II/base/mpi.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/solver_control.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+#include <deal.II/lac/trilinos_vector.h>
+
+#include <anvil/mechanics/linear_solver.h>
+
+#include "check.h"
+
+#include <cmath>
+#include <string>
+
+using namespace dealii;
+
+namespace
+{
+  /// diagonal I + rho S, or S alone if identity is false.
+  void fill(TrilinosWrappers::SparseMatrix &K, const unsigned int n, const bool identity, const double rho)
+  {
+    const IndexSet         owned = complete_index_set(n);
+    DynamicSparsityPattern dsp(n, n, owned);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        dsp.add(i, i);
+        dsp.add((i + 1) % n, i);
+      }
+    K.reinit(owned, owned, dsp, MPI_COMM_WORLD);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        K.set(i, i, identity ? 1. : 0.);
+        K.set((i + 1) % n, i, rho);
+      }
+    K.compress(VectorOperation::insert);
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  anvil::testing::Checks           check;
+  const unsigned int               n     = 200;
+  const IndexSet                   owned = complete_index_set(n);
+
+  TrilinosWrappers::SparseMatrix I, shift, damped;
+  fill(I, n, true, 0.);
+  fill(shift, n, false, 1.);
+  fill(damped, n, true, 0.97);
+  anvil::IterativeSolverSettings settings; // restart 28, cap 1000, 1e-8
+  const auto amg = anvil::build_amg(I, {}, settings);
+
+  TrilinosWrappers::MPI::Vector b(owned, MPI_COMM_WORLD), x(owned, MPI_COMM_WORLD), r(owned, MPI_COMM_WORLD);
+  b[0] = 1.;
+  b.compress(VectorOperation::insert);
+
+  // The cyclic shift: no progress, stopped after two cycles.
+  unsigned int stopped = 0;
+  bool         thrown  = false;
+  try
+    {
+      anvil::solve_gmres(shift, x, b, *amg, settings);
+    }
+  catch (const SolverControl::NoConvergence &e)
+    {
+      thrown  = true;
+      stopped = e.last_step;
+    }
+  check(thrown, "K = S: GMRES(28) does not converge");
+  check(stopped >= 2 * settings.restart && stopped <= 2 * settings.restart + 1,
+        "K = S: stopped at step " + std::to_string(stopped) + " (two cycles: 56), not at the cap");
+
+  // I + 0.97 S: steady, slow; converges.
+  x                  = 0;
+  unsigned int steps = 0;
+  try
+    {
+      steps = anvil::solve_gmres(damped, x, b, *amg, settings);
+    }
+  catch (const SolverControl::NoConvergence &e)
+    {
+      steps = e.last_step + 100000;
+    }
+  damped.vmult(r, x);
+  r -= b;
+  check(steps > 2 * settings.restart && steps <= 605,
+        "K = I + 0.97 S: " + std::to_string(steps) + " iterations (bound 605, more than two cycles)");
+  check(r.l2_norm() <= 1e-8 * b.l2_norm(), "K = I + 0.97 S: |b - K x| / |b| = " + std::to_string(r.l2_norm()));
+  return check.finish();
+}
