@@ -172,10 +172,22 @@ namespace anvil
     surfaces.clear();
     largest_face = 0;
     double shortest = std::numeric_limits<double>::max();
+    faces.reserve(raw_faces.size());
+    {
+      std::map<types::boundary_id, std::size_t> count; // each surface's arrays at their size
+      for (const auto &[b, keys] : raw_faces)
+        ++count[b];
+      for (const auto &[b, n] : count)
+        {
+          surfaces[b].faces.reserve(n);
+          surfaces[b].nodes.reserve(n * n_vertices);
+        }
+    }
     for (const auto &[b, keys] : raw_faces)
       {
         Face face;
         face.boundary = b;
+        face.nodes.reserve(keys.size());
         for (const auto k : keys)
           face.nodes.push_back(number_of(k));
         surfaces[b].faces.push_back(faces.size());

@@ -65,6 +65,7 @@ namespace anvil
     struct Rows
     {
       Index                                first = 0;
+      unsigned int                         cells_per_dof = 1; // a first touch reserves for them
       std::vector<std::vector<Index>>      mine;
       std::map<Index, std::vector<Index>> away;
 
@@ -77,6 +78,8 @@ namespace anvil
         for (const auto r : closure)
           {
             auto &columns = (*this)[r];
+            if (columns.empty())
+              columns.reserve(cells_per_dof * closure.size());
             columns.insert(columns.end(), closure.begin(), closure.end());
           }
         for (const auto i : diagonal)
@@ -91,7 +94,8 @@ namespace anvil
   {
     AssertThrow(owned.is_contiguous(), ExcMessage("make_cell_rows: owned dofs not contiguous"));
     Rows r;
-    r.first = owned.n_elements() > 0 ? *owned.begin() : 0;
+    r.first         = owned.n_elements() > 0 ? *owned.begin() : 0;
+    r.cells_per_dof = 1u << dim; // a vertex's cells in a structured mesh
     r.mine.resize(owned.n_elements());
     std::vector<Index> dofs, closure, diagonal;
     for (const auto &cell : dof_handler.active_cell_iterators())
