@@ -38,34 +38,13 @@ namespace anvil
     template <unsigned int N_ROWS, bool SENSITIVITY, unsigned int n>
     void expand_rows(const FactoredTangent &f, const unsigned int (&cols)[n], double *T)
     {
-      const double  dev = SENSITIVITY ? -f.sensitivity_deviatoric : f.deviatoric;
-      const double  vol = SENSITIVITY ? 0. : f.bulk;
-      const double  nn  = SENSITIVITY ? f.sensitivity_normal : f.normal;
-      const double *r   = SENSITIVITY ? f.w : f.v;
+      const double  nn = SENSITIVITY ? f.sensitivity_normal : f.normal;
+      const double *r  = SENSITIVITY ? f.w : f.v;
       for (unsigned int p = 0; p < N_ROWS; ++p)
         {
           const double fp = nn * f.n[p];
           for (unsigned int i = 0; i < n; ++i)
-            {
-              const unsigned int q = cols[i];
-              // The sums fill_tangent()/fill_sensitivity() (j2_tangent.h) form: the same bits.
-              double e = fp * f.n[q];
-              if (SENSITIVITY)
-                {
-                  const double a = f.sensitivity_deviatoric;
-                  if (p < 3 && q < 3)
-                    e = (p == q ? 1. - a * (2. / 3) : a * (1. / 3)) + e;
-                  else if (p == q)
-                    e = 0.5 * (1 - a) + e;
-                }
-              else if (p < 3 && q < 3)
-                e = (vol + dev * ((p == q ? 1. : 0.) - 1. / 3)) + e;
-              else if (p == q)
-                e = 0.5 * dev + e;
-              if (f.rank_one)
-                e += f.u[p] * r[q];
-              T[6 * p + q] = e;
-            }
+            T[6 * p + cols[i]] = factored_entry<SENSITIVITY>(f, p, cols[i], fp, r);
         }
     }
 

@@ -1,6 +1,7 @@
 // The Jaumann tangent δσ of the plane-strain kernel's four directions, on
 // the rows and columns it reads (plane_strain_rows.h): planar_tangent.cc's
 // operations on the raw components 00, 11, 01 only.
+#include <anvil/material/planar_tangent.h>
 #include <anvil/mechanics/plane_strain_rows.h>
 
 namespace anvil
@@ -16,39 +17,20 @@ namespace anvil
 
       /**
        * The factored C (or S if @p SENSITIVITY) on rows × columns {00, 11,
-       * 01}: expand_rows() of planar_tangent.cc entry for entry (the sums
-       * fill_tangent()/fill_sensitivity() form), @p T[r][c] for raw rows[r], rows[c].
+       * 01}: factored_entry() (planar_tangent.h), as expand_rows() of
+       * planar_tangent.cc, @p T[r][c] for raw rows[r], rows[c].
        */
       template <bool SENSITIVITY>
       void expand_in_plane(const FactoredTangent &f, double (&T)[3][3])
       {
-        const double  dev = f.deviatoric, vol = f.bulk;
-        const double  nn  = SENSITIVITY ? f.sensitivity_normal : f.normal;
-        const double *r   = SENSITIVITY ? f.w : f.v;
-        const double  a   = f.sensitivity_deviatoric;
+        const double  nn = SENSITIVITY ? f.sensitivity_normal : f.normal;
+        const double *r  = SENSITIVITY ? f.w : f.v;
         for (unsigned int ip = 0; ip < 3; ++ip)
           {
             const unsigned int p  = rows[ip];
             const double       fp = nn * f.n[p];
             for (unsigned int iq = 0; iq < 3; ++iq)
-              {
-                const unsigned int q = rows[iq];
-                double             e = fp * f.n[q];
-                if (SENSITIVITY)
-                  {
-                    if (p < 3 && q < 3)
-                      e = (p == q ? 1. - a * (2. / 3) : a * (1. / 3)) + e;
-                    else if (p == q)
-                      e = 0.5 * (1 - a) + e;
-                  }
-                else if (p < 3 && q < 3)
-                  e = (vol + dev * ((p == q ? 1. : 0.) - 1. / 3)) + e;
-                else if (p == q)
-                  e = 0.5 * dev + e;
-                if (f.rank_one)
-                  e += f.u[p] * r[q];
-                T[ip][iq] = e;
-              }
+              T[ip][iq] = factored_entry<SENSITIVITY>(f, p, rows[iq], fp, r);
           }
       }
 

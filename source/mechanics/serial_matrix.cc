@@ -1,6 +1,8 @@
 // The one-process system matrix from kept rows (serial_matrix.h).
 #include <anvil/mechanics/serial_matrix.h>
 
+#include "sorted_graph.h"
+
 #include <Epetra_CrsGraph.h>
 #include <Epetra_CrsMatrix.h>
 
@@ -10,25 +12,6 @@
 namespace anvil
 {
   using namespace dealii;
-
-  namespace
-  {
-    /**
-     * A graph whose rows the caller inserts sorted and without repeats:
-     * FillComplete() then skips its per-row shell sort (Epetra keeps
-     * these flags protected; deal.II's trilinos_sparse_matrix.cc derives
-     * from Epetra_CrsGraph to set one the same way).
-     */
-    class SortedGraph : public Epetra_CrsGraph
-    {
-    public:
-      SortedGraph(const Epetra_Map &map, const int *row_lengths)
-        : Epetra_CrsGraph(Copy, map, map, row_lengths, true)
-      {}
-      // (Repeats are private to Epetra: its merge pass stays, a linear scan.)
-      void declare_sorted() { SetSorted(true); }
-    };
-  } // namespace
 
   void make_serial_matrix(const std::vector<std::vector<types::global_dof_index>> &cell_rows,
                           const std::vector<std::vector<types::global_dof_index>> &couplings,
@@ -84,7 +67,7 @@ namespace anvil
         lengths[r]     = offsets[r + 1] - offsets[r];
       }
 
-    SortedGraph graph(map, lengths.data());
+    SortedGraph graph(map, map, lengths.data());
     for (unsigned int r = 0; r < n; ++r)
       if (lengths[r] > 0)
         {
@@ -95,14 +78,7 @@ namespace anvil
     // The graph holds its copy: the rows' arrays go before the values come.
     std::vector<int>().swap(columns);
     std::vector<std::vector<int>>().swap(extra);
-    graph.declare_sorted();
-    graph.FillComplete(map, map);
-    graph.OptimizeStorage();
-    // deal.II's matrix takes an Epetra matrix's graph (reinit from the
-    // matrix, its values not copied): the one way in without a pattern.
-    Epetra_CrsMatrix on_graph(Copy, graph);
-    on_graph.FillComplete(map, map);
-    matrix.reinit(on_graph, false);
+    matrix_on_graph(graph, map, matrix);
   }
 
   std::string compare_graphs(const TrilinosWrappers::SparseMatrix &a,

@@ -6,6 +6,8 @@
 #include <anvil/core/instantiate.h>
 #include <anvil/mechanics/sparsity_rows.h>
 
+#include "sorted_graph.h"
+
 #include <Epetra_CrsGraph.h>
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Util.h>
@@ -50,16 +52,6 @@ namespace anvil
           closure.push_back(i);
       sort_unique(closure);
     }
-
-    /// A graph whose rows go in sorted and without repeats (serial_matrix.cc).
-    class SortedGraph : public Epetra_CrsGraph
-    {
-    public:
-      SortedGraph(const Epetra_Map &rows, const Epetra_Map &columns, const int *row_lengths)
-        : Epetra_CrsGraph(Copy, rows, columns, row_lengths, true)
-      {}
-      void declare_sorted() { SetSorted(true); }
-    };
 
     /// A process's rows: the owned ones by position, the others by dof.
     struct Rows
@@ -269,12 +261,7 @@ namespace anvil
                                          std::to_string(e)));
         }
     std::vector<int>().swap(columns);
-    graph.declare_sorted();
-    graph.FillComplete(map, map);
-    graph.OptimizeStorage();
-    Epetra_CrsMatrix on_graph(Copy, graph);
-    on_graph.FillComplete(map, map);
-    matrix.reinit(on_graph, false);
+    matrix_on_graph(graph, map, matrix);
   }
 
 #define INSTANTIATE(dim)                                                                         \
