@@ -6,6 +6,7 @@ convergence orders, energy balances); this module only runs and reads.
 import csv
 import json
 import os
+import re
 import subprocess
 import sys
 
@@ -122,6 +123,22 @@ def finish():
         print("%d check(s) failed" % len(failures))
         sys.exit(1)
     print("all checks passed")
+
+
+def pattern_checks(name, summary, stdout, min_patterns=1):
+    """The ANVIL_PATTERN_CHECK lines of a run (the matrix graph built both by
+    anvil and by deal.II's route, compared): checks that every pattern the
+    run built (summary.json's pattern_rebuilds) was compared equal; returns
+    the (rows, entries) of each comparison."""
+    compared = [(int(r), int(e)) for r, e in re.findall(
+        r"ANVIL_PATTERN_CHECK: (\d+) rows, (\d+) entries, equal to deal.II's", stdout)]
+    patterns = summary["contact"]["pattern_rebuilds"]  # the first one included
+    print("  %s: %d patterns, %d compared equal (%d rows, %d to %d entries)"
+          % (name, patterns, len(compared), compared[0][0] if compared else 0,
+             min(e for _, e in compared) if compared else 0, max(e for _, e in compared) if compared else 0))
+    check(len(compared) == patterns and patterns >= min_patterns,
+          name + ": every pattern (%d) built both ways and equal" % patterns)
+    return compared
 
 
 def largest_column_difference(out_a, out_b, names, summary_a=None, summary_b=None):

@@ -20,9 +20,8 @@ Checked: one comparison per pattern (summary.json's pattern_rebuilds), every
 one equal, and patterns of different sizes.
 """
 import os
-import re
 
-from anvil_test import run, check, finish
+from anvil_test import run, check, finish, pattern_checks
 
 os.environ["ANVIL_PATTERN_CHECK"] = "1"
 STRIP = ["Geometry/Blocks=lower: 0, 0, 2, 0.02, 199, 2; upper: 0, 0.02, 2, 0.04, 200, 2",
@@ -35,14 +34,7 @@ CASES = [("prm/two_blocks.prm", ["Contact/Pattern look-ahead=0"], 2, "two_blocks
          ("contrib/bench/contact_strip.prm", STRIP, 2, "strip_per_body_np2")]
 for scene, sets, np, name in CASES:
     out, summary, stdout = run(scene, sets + ["Output/Field interval=0"], np=np, name="distributed_matrix_" + name)
-    compared = [(int(r), int(e)) for r, e in re.findall(
-        r"ANVIL_PATTERN_CHECK: (\d+) rows, (\d+) entries, equal to deal.II's", stdout)]
-    patterns = summary["contact"]["pattern_rebuilds"]  # the first one included
-    print("  %s: %d patterns, %d compared equal (%d rows, %d to %d entries)"
-          % (name, patterns, len(compared), compared[0][0] if compared else 0,
-             min(e for _, e in compared) if compared else 0, max(e for _, e in compared) if compared else 0))
-    check(len(compared) == patterns and patterns >= 1,
-          name + ": every pattern (%d) built both ways and equal" % patterns)
+    compared = pattern_checks(name, summary, stdout)
     if "two_blocks" in name:
         check(len({e for _, e in compared}) > 1, name + ": the contact couplings change the pattern")
 finish()
