@@ -265,6 +265,17 @@ echo "regression layer: $(grep -c 'Passed' "$out/regression.log") cases, $(pytho
 # the fitted exponents and the crossover ('Direct solver limit = measured').
 python3 "$ANVIL_ROOT/contrib/bench/solver_scaling.py" "$ANVIL_BUILD" "$out/solver_scaling" \
   $([ "${1:-}" = "--small" ] && echo --small) || echo "contrib/bench/solver_scaling.py failed"
+# np = 1 against np = 2 on the largest 3D plastic block and contact strip just
+# run (issue 15, >= 1.7): the same cases on two processes, the strip cut per
+# body so that its contact surface is shared; contrib/bench/speedup.py pairs them.
+if [ "${1:-}" = "--small" ]; then large_sizes="3d:10;strip:1000"; else large_sizes="3d:30;strip:16000"; fi
+OMPI_MCA_mpi_yield_when_idle=1 python3 "$ANVIL_ROOT/contrib/bench/solver_scaling.py" "$ANVIL_BUILD" \
+  "$out/solver_scaling" --cases 3d --solvers iterative --sizes "$large_sizes" --np 2 \
+  || echo "contrib/bench/solver_scaling.py --np 2 (3d) failed"
+OMPI_MCA_mpi_yield_when_idle=1 python3 "$ANVIL_ROOT/contrib/bench/solver_scaling.py" "$ANVIL_BUILD" \
+  "$out/solver_scaling" --cases strip --solvers iterative --sizes "$large_sizes" --np 2 --partition "per body" \
+  || echo "contrib/bench/solver_scaling.py --np 2 (strip) failed"
+python3 "$ANVIL_ROOT/contrib/bench/speedup.py" "$out/solver_scaling/results.json" || echo "contrib/bench/speedup.py failed"
 # Issue 15 (performance): solver and process wall time, thermal share, time per
 # Newton iteration against one assembly + one solve, Krylov iterations per
 # solve on the two blocks, the thermal necking bar and the tube (case 3); the
