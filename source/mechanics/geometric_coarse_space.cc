@@ -7,6 +7,7 @@
 #include <deal.II/lac/solver_gmres.h>
 #include <deal.II/lac/vector_memory.h>
 
+#include <anvil/core/input_error.h>
 #include <anvil/core/instantiate.h>
 
 #include "geometric_coarse_space.h"
@@ -15,6 +16,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <iostream>
 
 DEAL_II_DISABLE_EXTRA_DIAGNOSTICS
 #include <EpetraExt_MatrixMatrix.h>
@@ -55,7 +57,7 @@ namespace anvil
     {
       const MPI_Comm comm = dof_handler.get_communicator();
       const char    *what = "Mechanics/Linear solver/Preconditioner = geometric needs one axis-parallel block "
-                            "of equal cells with even subdivisions (Geometry/Blocks, no refinement)";
+                            "of equal cells with even subdivisions (Geometry/Blocks)";
       std::array<double, dim> lower, upper, h;
       lower.fill(std::numeric_limits<double>::max());
       upper.fill(-std::numeric_limits<double>::max());
@@ -75,19 +77,20 @@ namespace anvil
               h[d]     = std::min(h[d], b - a);
             }
       Box<dim>      box;
-      std::size_t   cells = 1;
+      std::size_t   cells    = 1;
+      int           off_grid = 0;
       for (unsigned int d = 0; d < dim; ++d)
         {
           box.lower[d] = Utilities::MPI::min(lower[d], comm);
           box.h[d]     = Utilities::MPI::min(h[d], comm);
           const double length = Utilities::MPI::max(upper[d], comm) - box.lower[d];
           box.cells[d]        = static_cast<unsigned int>(std::lround(length / box.h[d]));
-          AssertThrow(box.cells[d] % 2 == 0 && std::abs(box.cells[d] * box.h[d] - length) < 1e-8 * length,
-                      ExcMessage(what));
+          if (box.cells[d] % 2 != 0 || std::abs(box.cells[d] * box.h[d] - length) > 1e-8 * length)
+            off_grid = 1;
           cells *= box.cells[d];
         }
-      AssertThrow(cells == dof_handler.get_triangulation().n_global_active_cells(), ExcMessage(what));
-      int off_grid = 0;
+      if (cells != dof_handler.get_triangulation().n_global_active_cells())
+        off_grid = 1;
       for (const auto &cell : dof_handler.active_cell_iterators())
         if (cell->is_locally_owned())
           for (const unsigned int v : cell->vertex_indices())
@@ -95,18 +98,26 @@ namespace anvil
               if (std::abs(cell->vertex(v)[d] - box.lower[d] - box.index(cell->vertex(v), d) * box.h[d]) >
                   1e-8 * box.h[d])
                 off_grid = 1;
-      AssertThrow(Utilities::MPI::max(off_grid, comm) == 0, ExcMessage(what));
+      if (Utilities::MPI::max(off_grid, comm) != 0)
+        throw InputError(what);
       return box;
     }
   } // namespace
+
+  template <int dim>
+  void check_geometric_coarse_space(const DoFHandler<dim> &dof_handler)
+  {
+    if (dof_handler.get_fe().degree != 1 || dof_handler.get_fe().n_components() != dim)
+      throw InputError("Mechanics/Linear solver/Preconditioner = geometric: Q1 elements only (Polynomial degree = 1)");
+    find_box(dof_handler);
+  }
 
   template <int dim>
   CoarseSpace make_coarse_space(const DoFHandler<dim>                &dof_handler,
                                 const AffineConstraints<double>      &constraints,
                                 const TrilinosWrappers::SparseMatrix &K)
   {
-    AssertThrow(dof_handler.get_fe().degree == 1 && dof_handler.get_fe().n_components() == dim,
-                ExcMessage("Mechanics/Linear solver/Preconditioner = geometric: Q1 elements only"));
+    check_geometric_coarse_space(dof_handler);
     const MPI_Comm          comm = dof_handler.get_communicator();
     const Box<dim>          box  = find_box(dof_handler);
     const Epetra_CrsMatrix &A    = K.trilinos_matrix();
@@ -239,6 +250,11 @@ namespace anvil
                   ExcMessage("geometric coarse space: K P failed"));
       AssertThrow(EpetraExt::MatrixMatrix::Multiply(*space.P, true, KP, false, *Ac) == 0,
                   ExcMessage("geometric coarse space: Pᵀ K P failed"));
+      // Benchmarks: the entries of the operators (12 B each in memory).
+      if (std::getenv("ANVIL_GMG_LOG") && K.Comm().MyPID() == 0)
+        std::cout << "geometric coarse space: K " << K.NumGlobalRows() << " rows, " << K.NumGlobalNonzeros()
+                  << " entries; P " << space.P->NumGlobalNonzeros() << "; K P " << KP.NumGlobalNonzeros()
+                  << "; A_c " << Ac->NumGlobalRows() << " rows, " << Ac->NumGlobalNonzeros() << std::endl;
     }
     return Ac;
   }
@@ -360,6 +376,7 @@ namespace anvil
   }
 
 #define INSTANTIATE(dim)                                                                                   \
+  template void         check_geometric_coarse_space(const DoFHandler<dim> &);                             \
   template CoarseSpace  make_coarse_space(const DoFHandler<dim> &, const AffineConstraints<double> &,      \
                                          const TrilinosWrappers::SparseMatrix &);                          \
   template unsigned int solve_two_level(const TrilinosWrappers::SparseMatrix &, TrilinosWrappers::MPI::Vector &, \

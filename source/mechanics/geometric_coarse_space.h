@@ -57,7 +57,12 @@ namespace anvil
     ~CoarseSpace();
   };
 
-  /// P for K's rows (throws ExcMessage if the mesh is not one even block).
+  /// InputError naming the parameter unless the mesh is one block of equal
+  /// cells with even subdivisions (collective).
+  template <int dim>
+  void check_geometric_coarse_space(const dealii::DoFHandler<dim> &dof_handler);
+
+  /// P for K's rows (throws InputError if the mesh is not one even block).
   template <int dim>
   CoarseSpace make_coarse_space(const dealii::DoFHandler<dim>           &dof_handler,
                                 const dealii::AffineConstraints<double> &constraints,
