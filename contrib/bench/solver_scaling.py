@@ -19,7 +19,7 @@ Cases:
 
 Usage: solver_scaling.py BUILD_DIR OUT_DIR [--small] [--large] [--cases 2d,3d,strip]
        [--solvers iterative,direct] [--sizes '2d:64,128;3d:10'] [--np 2] [--partition 'per body']
-       [--package ML|MueLu] [--tag NAME] [--set ENTRY=VALUE ...]
+       [--package ML|MueLu] [--preconditioner AMG|geometric] [--tag NAME] [--set ENTRY=VALUE ...]
 
 --partition sets Geometry/Partition (default: the scene's, p4est's space-filling
 curve); 'per body' cuts every body in np slabs, so that the strip's contact
@@ -47,6 +47,10 @@ sa: use filtered matrix:bool=true'; doc/linear_solver.md, session 16).
 Since session 17 the AMG settings are 'automatic': once the material flows plastically,
 the isochoric modes with Chebyshev 6 over [lambda_max/100, lambda_max]; --set
 'Mechanics/Linear solver/AMG isochoric modes=false' gives the earlier default.
+
+--preconditioner geometric sets Mechanics/Linear solver/Preconditioner (the two-level
+preconditioner on the geometric coarse space, one block with even subdivisions:
+doc/linear_solver.md, session 20); its runs are named ..._geometric.
 
 --set passes an entry to every run (e.g. 'Mechanics/Linear solver/AMG rebuild
 growth=0' for the hierarchy built at every solve, as before session 8).
@@ -143,6 +147,7 @@ def main():
     np = 1
     partition = ""
     package = tag = ""
+    preconditioner = "AMG"
     extra = [args[i + 1] for i, a in enumerate(args) if a == "--set"]
     for i, a in enumerate(args):
         if a == "--cases":
@@ -157,6 +162,11 @@ def main():
             package = args[i + 1]
         if a == "--tag":
             tag = args[i + 1]
+        if a == "--preconditioner":
+            preconditioner = args[i + 1]
+    if preconditioner != "AMG":
+        extra.append("Mechanics/Linear solver/Preconditioner=" + preconditioner)
+        tag = "_".join(t for t in (preconditioner, tag) if t)
     sizes = {"2d": [64, 128, 256] + ([512] if large else []), "3d": [6, 8, 10, 12, 20, 30] + ([40, 69] if large else []),
              "strip": [1000, 4000, 16000]}
     if small:

@@ -23,6 +23,8 @@
 #include <anvil/mechanics/serial_matrix.h>
 #include <anvil/mechanics/sparsity_rows.h>
 
+#include "geometric_coarse_space.h"
+
 #include <algorithm>
 #include <cstdint>
 #include <chrono>
@@ -90,6 +92,9 @@ namespace anvil
         audit_omission = 1 + (it - terms.begin());
       }
     dof_handler.distribute_dofs(fe);
+    // Refused before any work if the mesh has no nested coarse mesh.
+    if (parameters.preconditioner == "geometric" && parameters.linear_solver != "direct")
+      check_geometric_coarse_space(dof_handler);
     cell_masses.clear();
     boundary_dofs.clear();
     kept_predictor = KeptPredictor();

@@ -95,6 +95,7 @@ namespace anvil
       double       linear_tolerance             = 1e-10;
       unsigned int linear_max_iterations        = 1000;
       unsigned int gmres_restart                = 28;    // Krylov basis size before a restart
+      std::string  preconditioner               = "AMG"; // AMG | geometric (geometric_coarse_space.h)
       double       amg_rebuild_growth           = 0;
       // AMG (linear_solver.h): 0 / "automatic" chosen per solve in solve_linear_system().
       unsigned int amg_smoother_degree          = 0;     // Chebyshev degree
