@@ -265,11 +265,11 @@ namespace anvil
      * 2D 256² plastic F-bar block's second Newton iteration of step 1's full
      * step (whose tangent KLU solves to 2e-14) sat at |r| ≈ |b| for all
      * 1000 iterations (its true residual at the end 18 |b|) before the step
-     * was cut back anyway; with the stop it fails after 2 cycles (56
+     * was cut back anyway; with the stop it fails after one cycle (60
      * iterations). A converging solve gains far more per cycle: the onset
-     * solve of the same step (131 iterations to 1e-8) ~50×, the slowest
-     * converging solve seen (460, the rigid-body modes only) ~3×.
-     * doc/linear_solver.md, session 19.
+     * solve of the same step (63 iterations to 1e-8) ~50×, the slowest
+     * converging solve seen (460, the rigid-body modes only, GMRES(28))
+     * ~3× per 28 iterations. doc/linear_solver.md, sessions 19 and 20.
      */
     class StallControl : public SolverControl
     {
@@ -315,8 +315,11 @@ namespace anvil
                            const TrilinosWrappers::PreconditionAMG &amg,
                            const IterativeSolverSettings           &settings)
   {
-    // Two restart cycles without halving the residual: stalled.
-    StallControl control(settings.max_iterations, settings.tolerance * b.l2_norm(), 2 * settings.restart);
+    // One restart cycle without halving the residual: stalled (two cycles,
+    // session 19, cost the 2D 256² block's stalled solve 120 iterations
+    // for nothing; a converging solve gains >= 10x per cycle of 60:
+    // doc/linear_solver.md, session 20).
+    StallControl control(settings.max_iterations, settings.tolerance * b.l2_norm(), settings.restart);
     // Right preconditioning: the test is on the true residual |b − K x|
     // (left preconditioning would test |P⁻¹(b − K x)|, in mm, against a
     // tolerance in N). deal.II keeps restart + 2 vectors, 8 B per DoF each.
