@@ -267,11 +267,18 @@ python3 "$ANVIL_ROOT/contrib/bench/solver_scaling.py" "$ANVIL_BUILD" "$out/solve
   $([ "${1:-}" = "--small" ] && echo --small) || echo "contrib/bench/solver_scaling.py failed"
 # np = 1 against np = 2 on the largest 3D plastic block and contact strip just
 # run (issue 15, >= 1.7): the same cases on two processes, the strip cut per
-# body so that its contact surface is shared; contrib/bench/speedup.py pairs them.
+# body so that its contact surface is shared, the cube both ways;
+# contrib/bench/speedup.py pairs them.
 if [ "${1:-}" = "--small" ]; then large_sizes="3d:10;strip:1000"; else large_sizes="3d:30;strip:16000"; fi
 OMPI_MCA_mpi_yield_when_idle=1 python3 "$ANVIL_ROOT/contrib/bench/solver_scaling.py" "$ANVIL_BUILD" \
   "$out/solver_scaling" --cases 3d --solvers iterative --sizes "$large_sizes" --np 2 \
   || echo "contrib/bench/solver_scaling.py --np 2 (3d) failed"
+# The cube cut in two slabs (one plane) instead of p4est's staircase: ML
+# aggregates within a process, and the plane leaves np 1's aggregates
+# (doc/linear_solver.md, session 20).
+OMPI_MCA_mpi_yield_when_idle=1 python3 "$ANVIL_ROOT/contrib/bench/solver_scaling.py" "$ANVIL_BUILD" \
+  "$out/solver_scaling" --cases 3d --solvers iterative --sizes "$large_sizes" --np 2 --partition "per body" \
+  || echo "contrib/bench/solver_scaling.py --np 2 --partition 'per body' (3d) failed"
 OMPI_MCA_mpi_yield_when_idle=1 python3 "$ANVIL_ROOT/contrib/bench/solver_scaling.py" "$ANVIL_BUILD" \
   "$out/solver_scaling" --cases strip --solvers iterative --sizes "$large_sizes" --np 2 --partition "per body" \
   || echo "contrib/bench/solver_scaling.py --np 2 (strip) failed"
