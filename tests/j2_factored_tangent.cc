@@ -241,7 +241,7 @@ namespace
         p.F_mat        = formulation.bar(p.F, p.beta);
         p.kin.reinit(p.F_mat, F_old, ObjectiveRate::jaumann, dim == 2 ? kinematics_all : 3u);
         points[q]->set_stress(random_stress(plastic ? 120 : 20, dim == 2));
-        p.point     = points[q].get();
+        p.point     = points[q];
         p.adiabatic = adiabatic;
         for (unsigned int k = 0; k < 2; ++k)
           responses[k].push_back(update(*points[q], p.kin, adiabatic, k == 1));

@@ -214,7 +214,9 @@ namespace anvil
                              (*context.material_temperature_old)(cell, q) :
                              increment.temperature;
       const double K_new = model.bulk_modulus_at(T_new), G_new = model.shear_modulus_at(T_new);
-      const double K_old = model.bulk_modulus_at(T_old), G_old = model.shear_modulus_at(T_old);
+      // (The same function of the same T where it did not move: two virtual calls fewer.)
+      const double K_old = T_old == T_new ? K_new : model.bulk_modulus_at(T_old);
+      const double G_old = T_old == T_new ? G_new : model.shear_modulus_at(T_old);
       const double thermal_strain = model.thermal_strain(T_new, T_new - T_old);
       const double W_old_at_old = elastic_energy_density(sigma_n, K_old, G_old);
       // (The same function of the same numbers where the moduli did not move.)
