@@ -33,7 +33,7 @@ namespace
                const SymmetricTensor<2, 3> &de, bool print)
   {
     auto update = [&](const SymmetricTensor<2, 3> &strain, const double J, MaterialResponse &r) {
-      auto point = model.create_point();
+      auto point = model.create_point({true});
       point->set_stress(sigma_n);
       MaterialIncrement inc;
       inc.strain_increment      = strain;

@@ -50,7 +50,7 @@ namespace
   {
     Errors                 e;
     const MaterialRequest  request = request_stress | request_tangent;
-    auto                   point   = model.create_point();
+    auto                   point   = model.create_point({true});
     point->set_stress(sigma_n);
     MaterialResponse adiabatic;
     point->update(increment(de, true), request, adiabatic);
@@ -83,7 +83,7 @@ namespace
       {
         MaterialResponse r, fresh_r;
         point->update(increment(scale * de, true), request, r);
-        auto fresh = model.create_point();
+        auto fresh = model.create_point({true});
         fresh->set_stress(sigma_n);
         fresh->update(increment(scale * de, true), request, fresh_r);
         e.repeat = std::max({e.repeat, relative(r.stress, fresh_r.stress),

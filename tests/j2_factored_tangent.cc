@@ -146,7 +146,7 @@ namespace
   void check_point(const Model &m, const MaterialModel &model, const bool planar,
                    const bool plastic, Worst &worst)
   {
-    auto point = model.create_point();
+    auto point = model.create_point({m.adiabatic});
     point->set_stress(random_stress(plastic ? 120 : 20, planar));
     const Tensor<2, 3> F_old = random_gradient(0.1, planar, true);
     const double       size  = plastic ? 1e-2 : 1e-5;
@@ -224,7 +224,8 @@ namespace
     scratch.reinit(tria.begin_active(), nullptr, formulation.component, f_bar, axisymmetric);
     const StressDivergence<dim> planar(context), general(context, false);
     const unsigned int          n_dofs = fe.n_dofs_per_cell(), n_q = quadrature.size();
-    std::vector<std::shared_ptr<MaterialPoint>> points = model.create_points(n_q);
+    const PointBlock             block  = model.create_points(n_q, {adiabatic});
+    const auto                  &points = block.points;
     std::vector<MaterialResponse>               responses[2];
     for (unsigned int b = 0; b < n_dofs; ++b)
       scratch.center_trace[b] = uniform(rng);
@@ -240,7 +241,7 @@ namespace
         p.F_mat        = formulation.bar(p.F, p.beta);
         p.kin.reinit(p.F_mat, F_old, ObjectiveRate::jaumann, dim == 2 ? kinematics_all : 3u);
         points[q]->set_stress(random_stress(plastic ? 120 : 20, dim == 2));
-        p.point     = points[q].get();
+        p.point     = points[q];
         p.adiabatic = adiabatic;
         for (unsigned int k = 0; k < 2; ++k)
           responses[k].push_back(update(*points[q], p.kin, adiabatic, k == 1));

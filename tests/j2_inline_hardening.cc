@@ -99,7 +99,7 @@ int main()
         const MaterialIncrement inc = testing::adiabatic_test_increment(de, true);
         const MaterialRequest request =
           tangent ? request_stress | request_tangent : request_stress;
-        auto adiabatic = model->create_point();
+        auto adiabatic = model->create_point({true});
         adiabatic->set_stress(sigma_n);
         MaterialResponse r;
         adiabatic->update(inc, request, r);

@@ -50,9 +50,9 @@ namespace
     {
       const auto        &tria = dofs.get_triangulation();
       const unsigned int n_q  = quadrature.size();
+      block = model.create_points(tria.n_active_cells() * n_q);
       points.reinit(tria, n_q);
-      for (auto &p : points.raw())
-        p = model.create_point();
+      points.raw() = block.points;
       for (auto *d : {&heat, &thermoelastic, &work})
         d->reinit(tria, n_q, 0.);
       start.reinit(tria, dofs.get_fe().n_dofs_per_cell(), n_q);
@@ -66,8 +66,9 @@ namespace
       context.plastic_work_rates    = &work;
       context.step_start            = keep ? &start : nullptr;
     }
-    PointData<std::shared_ptr<MaterialPoint>> points;
-    PointData<double>                         heat, thermoelastic, work;
+    PointBlock                 block; // owns the points
+    PointData<MaterialPoint *> points;
+    PointData<double>          heat, thermoelastic, work;
     StepStart                                 start;
     Context<2>                                context;
     ScratchData<2>                            scratch;

@@ -71,7 +71,7 @@ double check_piola(const MaterialModel &model, const double angle, const double 
   const Tensor<2, 3> F = R * S * F_old;
 
   auto piola = [&](const Tensor<2, 3> &Fx, MaterialResponse &response) {
-    auto point = model.create_point();
+    auto point = model.create_point({adiabatic});
     point->set_stress(sigma_n);
     IncrementalKinematics kin;
     kin.reinit(Fx, F_old, rate);

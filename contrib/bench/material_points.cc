@@ -197,7 +197,7 @@ int main(int argc, char **argv)
       if (!only.empty() && m.name != only)
         continue;
       const auto model = make_model(m.settings);
-      auto       point = model->create_point();
+      auto       point = model->create_point({m.adiabatic});
       for (const bool plastic_branch : {false, true})
         {
           if ((plastic_branch && model->name() == "hypoelastic") ||

@@ -191,7 +191,7 @@ namespace anvil
           for (unsigned int c = 0; c < 6; ++c)
             n_t.access_raw_entry(c) = n[c];
           const double chi = el.taylor_quinney;
-          AdiabaticState &state = *adiabatic_state; // (made by update_adiabatic())
+          AdiabaticState &state = adiabatic_state();
           state.strain_derivative =
             (chi * t.dwork_dq * std::sqrt(6.) * G * n_t - 3 * K * beta * T * unit_symmetric_tensor<3>()) /
             rho_c;

@@ -132,16 +132,20 @@ namespace anvil
             return update_isothermal<true>(increment, request, response);
           return update_isothermal<false>(increment, request, response);
         }
-      update_adiabatic(increment, request, response);
+      no_adiabatic_state();
+    }
+
+    [[noreturn, gnu::noinline, gnu::cold]] void no_adiabatic_state()
+    {
+      throw std::logic_error("a J2 point made without PointOptions::adiabatic was given an "
+                             "adiabatic increment (MaterialModel::create_points)");
     }
 
     [[gnu::noinline, gnu::no_stack_protector, gnu::optimize("no-tree-slp-vectorize")]] void J2Point::update_adiabatic(
       const MaterialIncrement &increment, const MaterialRequest request, MaterialResponse &response)
     {
       response.volume_ratio_sensitivity = SymmetricTensor<2, 3>();
-      if (!adiabatic_state)
-        adiabatic_state = std::make_unique<AdiabaticState>();
-      AdiabaticState &state = *adiabatic_state;
+      AdiabaticState &state = adiabatic_state();
       Rotated rotated = rotate(increment.rotation_increment); // independent of T: once for every return map below
       Trial         t;
       // Armero–Simo: the step's own heating changes the temperature the
@@ -255,15 +259,19 @@ namespace anvil
     });
   }
 
-  std::unique_ptr<MaterialPoint> J2Model::create_point() const
+  std::unique_ptr<MaterialPoint> J2Model::create_point(const PointOptions &options) const
   {
     prepare_kernel();
+    if (options.adiabatic)
+      return std::make_unique<j2::J2AdiabaticPoint>(*this);
     return std::make_unique<j2::J2Point>(*this);
   }
 
-  std::vector<std::shared_ptr<MaterialPoint>> J2Model::create_points(const std::size_t n) const
+  PointBlock J2Model::create_points(const std::size_t n, const PointOptions &options) const
   {
     prepare_kernel();
+    if (options.adiabatic)
+      return contiguous_points<j2::J2AdiabaticPoint>(n, *this);
     return contiguous_points<j2::J2Point>(n, *this);
   }
 } // namespace anvil

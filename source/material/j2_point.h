@@ -122,9 +122,7 @@ namespace anvil
       template <bool simple>
       [[gnu::visibility("hidden")]] void update_isothermal(const MaterialIncrement &increment, MaterialRequest request,
                              MaterialResponse &response);
-      /// update() with the adiabatic split (Armero–Simo).
-      [[gnu::visibility("hidden")]] void update_adiabatic(const MaterialIncrement &increment, MaterialRequest request,
-                            MaterialResponse &response);
+
       /// Trial state, yield test, return map and heat sources at (T, ΔT);
       /// ΔT_ad and what its tangent needs only if @p adiabatic (a constant
       /// at both callers: the isothermal update has neither).
@@ -205,9 +203,12 @@ namespace anvil
       SymmetricTensor<2, 3> stress_n, current;
       double                eps_n = 0, eps_c = 0;
       double                q_n = 0; // √(3/2)|dev σₙ|, kept with σₙ (the plastic work's start)
-      /// What only the adiabatic update keeps (112 B), in a block of its own
-      /// that a point's first adiabatic update makes: the points of the
-      /// other scenes do not carry it (J2Point 344 → 240 B).
+
+    protected:
+      /// What only the adiabatic update keeps (112 B): a J2AdiabaticPoint
+      /// carries it inline, so the points of the other scenes do not (232 B
+      /// against 344 B), and those of an adiabatic scene are not a heap
+      /// object each (session 19 made it on a point's first adiabatic update).
       struct AdiabaticState
       {
         // ∂ΔT_ad/∂Δε and ∂ΔT_ad/∂σ̃ₙ at fixed temperature (adiabatic tangent).
@@ -219,9 +220,45 @@ namespace anvil
         // iteration's 1e-12 tolerance).
         double guess = 0;
       };
-      std::unique_ptr<AdiabaticState> adiabatic_state;
+      /// update() with the adiabatic split (Armero–Simo): only a
+      /// J2AdiabaticPoint's (its update() is the only caller).
+      [[gnu::visibility("hidden")]] void update_adiabatic(const MaterialIncrement &increment, MaterialRequest request,
+                            MaterialResponse &response);
+      /// The state of update_adiabatic(): this point is a J2AdiabaticPoint.
+      AdiabaticState &adiabatic_state();
     };
 
+    /**
+     * A J2 point of a scene with the adiabatic split (PointOptions::adiabatic):
+     * the J2 point and the adiabatic iteration's state, in the body's block.
+     * A plain J2Point refuses an adiabatic increment.
+     */
+    class J2AdiabaticPoint : public J2Point
+    {
+    public:
+      using J2Point::J2Point;
+
+      void update(const MaterialIncrement &increment,
+                  const MaterialRequest    request,
+                  MaterialResponse        &response) override
+      {
+        if (!increment.adiabatic)
+          return J2Point::update(increment, request, response);
+        update_adiabatic(increment, request, response);
+      }
+
+    private:
+      friend class J2Point;
+      AdiabaticState state;
+    };
+
+    inline J2Point::AdiabaticState &J2Point::adiabatic_state()
+    {
+      return static_cast<J2AdiabaticPoint &>(*this).state;
+    }
+
     MaterialPointError no_plastic_solution(double T);
+    /// A plain J2Point's answer to an adiabatic increment (cold: off the update's path).
+    [[noreturn]] void no_adiabatic_state();
   } // namespace j2
 } // namespace anvil

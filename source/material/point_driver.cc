@@ -204,7 +204,7 @@ namespace anvil
       parse_deformation_gradient(F);
     check_path();
 
-    point = model->create_point();
+    point = model->create_point({adiabatic});
   }
 
   unsigned int MaterialPointDriver::strain_step(const unsigned int     step,

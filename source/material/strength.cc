@@ -1,4 +1,5 @@
 #include <anvil/material/j2_plasticity.h>
+#include <anvil/material/hardening/interface.h>
 #include <anvil/material/number_format.h>
 
 namespace anvil
@@ -37,5 +38,17 @@ namespace anvil
         return {hardening->location, e.what()};
       }
     return {};
+  }
+
+  bool J2Model::may_lose_strength() const
+  {
+    // No vanishing temperature, no T to refuse, σᵥ ≥ σ₀ > 0 for the linear
+    // law with θ = 1; any other law is asked point by point.
+    if (!plastic || !hardening)
+      return false;
+    HardeningLaw::LinearForm form;
+    if (!hardening->linear_form(form))
+      return true;
+    return form.theta_linear || !(form.sigma0 > 0) || !(form.h >= 0);
   }
 } // namespace anvil

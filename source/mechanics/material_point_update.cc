@@ -3,7 +3,6 @@
 #include <deal.II/base/symmetric_tensor.h>
 
 #include <anvil/core/instantiate.h>
-#include <anvil/material/j2_plasticity.h>
 #include <anvil/mechanics/assembly_kernels.h>
 
 #include <algorithm>
@@ -153,7 +152,7 @@ namespace anvil
     template <int dim>
     void MaterialPointUpdate<dim>::audit_terms(const CellIterator<dim>   &cell,
                                                const MaterialModel       &model,
-                                               const J2Model             *j2,
+                                               const bool                 kept_step,
                                                const unsigned int         q,
                                                const Tensor<2, 3>        &F,
                                                const Tensor<2, 3>        &F_old,
@@ -169,12 +168,12 @@ namespace anvil
       const double dv_half = mid_determinant(F, F_old) * p.w;
 
       // The material's stress power over the step, on its own kinematics (F̄ with F-bar):
-      // a J2 point kept σ̄ and Δε of its last update (J2Model::last_step()), the
-      // same numbers as from its kinematics here.
+      // a point that kept σ̄ and Δε of its last update (MaterialModel::last_step()),
+      // the same numbers as from its kinematics here.
       const SymmetricTensor<2, 3> *mean = nullptr, *strain = nullptr;
       SymmetricTensor<2, 3>        mean_here;
-      if (j2)
-        j2->last_step(point, mean, strain);
+      if (kept_step)
+        model.last_step(point, mean, strain);
       else
         {
           mean_here = mean_stress(p.kin, sigma_n, r.stress);
@@ -214,16 +213,11 @@ namespace anvil
       const double T_old = context.has_temperature_field() ?
                              (*context.material_temperature_old)(cell, q) :
                              increment.temperature;
-      double K_new = model.bulk_modulus(), G_new = model.shear_modulus();
-      double K_old = K_new, G_old = G_new, thermal_strain = 0;
-      if (j2)
-        {
-          K_new          = j2->elastic.bulk_modulus(T_new);
-          G_new          = j2->elastic.shear_modulus(T_new);
-          K_old          = j2->elastic.bulk_modulus(T_old);
-          G_old          = j2->elastic.shear_modulus(T_old);
-          thermal_strain = j2->elastic.thermal_strain(T_new, T_new - T_old);
-        }
+      const double K_new = model.bulk_modulus_at(T_new), G_new = model.shear_modulus_at(T_new);
+      // (The same function of the same T where it did not move: two virtual calls fewer.)
+      const double K_old = T_old == T_new ? K_new : model.bulk_modulus_at(T_old);
+      const double G_old = T_old == T_new ? G_new : model.shear_modulus_at(T_old);
+      const double thermal_strain = model.thermal_strain(T_new, T_new - T_old);
       const double W_old_at_old = elastic_energy_density(sigma_n, K_old, G_old);
       // (The same function of the same numbers where the moduli did not move.)
       const double W_old_at_new = K_new == K_old && G_new == G_old ?
@@ -367,15 +361,15 @@ namespace anvil
       // F of update() at the same u (bit for bit: the same operations), F_n
       // as the step's updates kept it (StepStart, where its key is this u_n),
       // the stresses and plastic strains the points hold from the last
-      // update, and the plastic work rate it stored. A J2 point kept what
-      // the audit needs of the material's kinematics (F̄ with F-bar): those
-      // are computed only for another law.
+      // update, and the plastic work rate it stored. A law whose points keep
+      // what the audit needs of the material's kinematics (F̄ with F-bar:
+      // MaterialModel::keeps_last_step()) spares it; else they are computed.
       const Formulation<dim>    &formulation = *context.formulation;
       const ReferenceCellValues &ref         = scratch.cell;
       auto                 cell_points = (*context.points)[cell];
       const MaterialModel &model       = *context.materials->at(cell->material_id());
-      const auto          *j2          = dynamic_cast<const J2Model *>(&model);
-      if (formulation.f_bar && !j2)
+      const bool           kept_step   = model.keeps_last_step();
+      if (formulation.f_bar && !kept_step)
         f_bar.evaluate_centre(scratch);
       const PointStart *kept = nullptr;
       if (context.step_start)
@@ -393,7 +387,7 @@ namespace anvil
           const Tensor<2, 3> F     = formulation.deformation_gradient(ref, q, scratch.local_u, R);
           const Tensor<2, 3> F_old =
             kept ? kept[q].F_old : formulation.deformation_gradient(ref, q, scratch.local_u_old, R);
-          if (!j2)
+          if (!kept_step)
             {
               double       beta  = 1;
               Tensor<2, 3> F_mat = F, F_mat_old = F_old;
@@ -407,7 +401,7 @@ namespace anvil
           p.response.plastic_work_rate          = (*context.plastic_work_rates)(cell, q);
           p.point = &point;
           p.w     = formulation.weight(ref, q, R);
-          audit_terms(cell, model, j2, q, F, F_old, p, increment, scratch.audit_kin, copy.audit[q]);
+          audit_terms(cell, model, kept_step, q, F, F_old, p, increment, scratch.audit_kin, copy.audit[q]);
         }
     }
 

@@ -97,6 +97,7 @@ namespace anvil
       check_geometric_coarse_space(dof_handler);
     cell_masses.clear();
     boundary_dofs.clear();
+    boundary_dofs_listed = false;
     kept_predictor = KeptPredictor();
     {
       // The assembly's cells in the order of the loop (WorkStream's too).
@@ -147,18 +148,25 @@ namespace anvil
     {
       // The diagonal of the mesh's bounding box: a length scale for the
       // round-off floor of the Newton test (GridTools::diameter compares all
-      // pairs of vertices, O(n²)).
+      // pairs of vertices, O(n²)); and the largest cell's diameter, the
+      // residual's (residual_floor(): it was recomputed at every call, 8 M
+      // instructions on two_blocks).
       Point<dim> lo, hi;
       for (unsigned int d = 0; d < dim; ++d)
         lo[d] = std::numeric_limits<double>::max(), hi[d] = -std::numeric_limits<double>::max();
+      double h = 0;
       for (const auto &cell : triangulation.active_cell_iterators())
         if (cell->is_locally_owned())
-          for (const unsigned int v : cell->vertex_indices())
-            for (unsigned int d = 0; d < dim; ++d)
-              {
-                lo[d] = std::min(lo[d], cell->vertex(v)[d]);
-                hi[d] = std::max(hi[d], cell->vertex(v)[d]);
-              }
+          {
+            h = std::max(h, cell->diameter());
+            for (const unsigned int v : cell->vertex_indices())
+              for (unsigned int d = 0; d < dim; ++d)
+                {
+                  lo[d] = std::min(lo[d], cell->vertex(v)[d]);
+                  hi[d] = std::max(hi[d], cell->vertex(v)[d]);
+                }
+          }
+      largest_cell_diameter = Utilities::MPI::max(h, mpi_communicator);
       double diagonal = 0;
       for (unsigned int d = 0; d < dim; ++d)
         {
@@ -303,44 +311,6 @@ namespace anvil
   }
 
   template <int dim>
-  void MechanicalProblem<dim>::setup_quadrature_point_data()
-  {
-    const unsigned int n_q = quadrature.size();
-    points.reinit(triangulation, n_q);
-    heat_sources.reinit(triangulation, n_q, 0.);
-    thermoelastic_sources.reinit(triangulation, n_q, 0.);
-    plastic_work_rates.reinit(triangulation, n_q, 0.);
-    if (parameters.dynamic)
-      node_masses.reinit(triangulation, formulation->n_nodes * formulation->n_nodes,
-                         std::numeric_limits<double>::quiet_NaN());
-    step_start.reinit(triangulation, fe.n_dofs_per_cell(), n_q);
-    material_temperature.reinit(triangulation, n_q, parameters.temperature);
-    material_temperature_old = material_temperature;
-    // One block of points per body (MaterialModel::create_points), handed
-    // out in cell order.
-    std::map<types::material_id, std::size_t> count;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          if (materials.find(cell->material_id()) == materials.end())
-            throw InputError("internal: no material for body id " +
-                             std::to_string(cell->material_id()));
-          count[cell->material_id()] += n_q;
-        }
-    std::map<types::material_id, std::vector<std::shared_ptr<MaterialPoint>>> made;
-    for (const auto &[id, n] : count)
-      made[id] = materials.find(id)->second->create_points(n);
-    std::map<types::material_id, std::size_t> next;
-    for (const auto &cell : triangulation.active_cell_iterators())
-      if (cell->is_locally_owned())
-        {
-          std::size_t &k = next[cell->material_id()];
-          for (unsigned int q = 0; q < n_q; ++q)
-            points(cell, q) = std::move(made[cell->material_id()][k++]);
-        }
-  }
-
-  template <int dim>
   void MechanicalProblem<dim>::make_axis_constraints(AffineConstraints<double> &c) const
   {
     // Axisymmetric: nodes on the axis (x = 0) do not move radially.
@@ -387,12 +357,12 @@ namespace anvil
     const auto known = boundary_dofs.find(boundary);
     if (known != boundary_dofs.end())
       return known->second;
-    // The lists are built once per numbering for every id this process sees;
-    // the key internal_face_boundary_id marks them built, so an id absent
-    // here gets its empty list instead of a second build appending to the others.
-    if (boundary_dofs.count(numbers::internal_face_boundary_id) > 0)
+    // The lists are built once per numbering for every id this process sees,
+    // so an id absent here gets its empty list instead of a second build
+    // appending to the others.
+    if (boundary_dofs_listed)
       return boundary_dofs[boundary];
-    boundary_dofs[numbers::internal_face_boundary_id];
+    boundary_dofs_listed = true;
     // Every boundary's list from one pass over the faces and one over the
     // cells (a pass per boundary cost ~15-30 M instructions per boundary on
     // the 48 k-DoF strip, twelve boundaries: s18-np2). Each list keeps the
@@ -575,7 +545,7 @@ namespace anvil
     return dof_handler.memory_consumption() + system_matrix.memory_consumption() +
            8 * solution.memory_consumption() + constraints.memory_consumption() +
            points.raw().size() *
-             (sizeof(std::shared_ptr<MaterialPoint>) + 2 * sizeof(SymmetricTensor<2, 3>) + 16);
+             (sizeof(MaterialPoint *) + 2 * sizeof(SymmetricTensor<2, 3>) + 16);
   }
 
   ANVIL_INSTANTIATE_CLASS(MechanicalProblem)

@@ -98,7 +98,7 @@ namespace anvil
                       "Relative tolerance of the iterative solver (dimensionless).");
     prm.declare_entry("Maximum iterations", "1000", Patterns::Integer(1),
                       "Iterations of the iterative solver before the step is cut back.");
-    prm.declare_entry("GMRES restart", "60", Patterns::Integer(1, 1000),
+    prm.declare_entry("GMRES restart", std::to_string(default_gmres_restart), Patterns::Integer(1, 1000),
                       "GMRES iterations before a restart (it keeps up to that many Krylov vectors + 2, "
                       "8 bytes per DoF each, allocated as the solve needs them; 60: the 2D 256² plastic "
                       "F-bar block's onset solve 131 -> 63 iterations, solves below 28 unchanged; "

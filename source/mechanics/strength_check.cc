@@ -1,8 +1,6 @@
 #include <deal.II/base/mpi.h>
 
 #include <anvil/core/instantiate.h>
-#include <anvil/material/hardening/interface.h>
-#include <anvil/material/j2_plasticity.h>
 #include <anvil/material/number_format.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
@@ -14,29 +12,6 @@
 namespace anvil
 {
   using namespace dealii;
-
-  namespace
-  {
-    /**
-     * Whether J2Model::strength_lost (material/strength.cc) can ever report
-     * at any (T, ε̄ ≥ 0): not for an elastic body, nor for the linear law
-     * σᵥ = σ₀ + h ε̄ with σ₀ > 0, h ≥ 0 and no softening (θ = 1: no vanishing
-     * temperature, no T to refuse, σᵥ ≥ σ₀ > 0). Any other model or law is
-     * asked point by point. The same answer on every process (the scene's laws).
-     */
-    bool may_lose_strength(const MaterialModel &model)
-    {
-      const auto *j2 = dynamic_cast<const J2Model *>(&model);
-      if (!j2)
-        return true;
-      if (!j2->plastic || !j2->hardening)
-        return false;
-      HardeningLaw::LinearForm form;
-      if (!j2->hardening->linear_form(form))
-        return true;
-      return form.theta_linear || !(form.sigma0 > 0) || !(form.h >= 0);
-    }
-  } // namespace
 
   template <int dim>
   std::string MechanicalProblem<dim>::strength_lost(const double time) const
@@ -50,7 +25,7 @@ namespace anvil
     // instructions on two_blocks); with none, no pass at all.
     std::map<types::material_id, bool> checked;
     for (const auto &[id, model] : materials)
-      checked[id] = may_lose_strength(*model);
+      checked[id] = model->may_lose_strength();
     if (std::none_of(checked.begin(), checked.end(), [](const auto &c) { return c.second; }))
       return "";
     const bool          heat  = static_cast<bool>(temperature_field);

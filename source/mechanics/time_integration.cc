@@ -11,7 +11,6 @@
 #include <anvil/mechanics/assembly_kernels.h>
 #include <anvil/mechanics/cell_scatter.h>
 #include <anvil/core/instantiate.h>
-#include <anvil/material/j2_plasticity.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
 #include <algorithm>
@@ -105,15 +104,14 @@ namespace anvil
           fe_values[displacements].get_function_gradients(solution, grad_u);
           fe_values[displacements].get_function_values(solution, u_values);
           const auto &m  = *materials.at(cell->material_id());
-          const auto *j2 = dynamic_cast<const J2Model *>(&m);
           for (unsigned int q = 0; q < n_q; ++q)
             {
               const double R = axisymmetric ? fe_values.quadrature_point(q)[0] : 1.;
               const double J = determinant(
                 deformation_gradient(grad_u[q], axisymmetric ? u_values[q][0] : 0., R));
               const double T     = heat ? material_temperature(cell, q) : parameters.temperature;
-              const double K     = j2 ? j2->elastic.bulk_modulus(T) : m.bulk_modulus();
-              const double G     = j2 ? j2->elastic.shear_modulus(T) : m.shear_modulus();
+              const double K     = m.bulk_modulus_at(T);
+              const double G     = m.shear_modulus_at(T);
               const auto  &sigma = points(cell, q)->stress();
               const double p     = trace(sigma) / 3;
               const auto   s     = deviator(sigma);

@@ -117,10 +117,20 @@ namespace anvil
                           const Scene              &scene,
                           const std::string        &path) override;
 
-    std::unique_ptr<MaterialPoint> create_point() const override;
-    std::vector<std::shared_ptr<MaterialPoint>> create_points(std::size_t n) const override;
+    /// A J2Point, or with options.adiabatic a J2AdiabaticPoint (j2_point.h).
+    std::unique_ptr<MaterialPoint> create_point(const PointOptions &options = {}) const override;
+    PointBlock create_points(std::size_t n, const PointOptions &options = {}) const override;
     /// The hardening law's strength_limit(), then σᵥ(ε̄, T) > 0 (material/strength.cc).
     StrengthLoss strength_lost(double T, double eps) const override;
+    /// Not for an elastic body, nor for σᵥ = σ₀ + h ε̄ with σ₀ > 0, h ≥ 0 and
+    /// no softening (material/strength.cc).
+    bool        may_lose_strength() const override;
+    double      bulk_modulus_at(double T) const override { return elastic.bulk_modulus(T); }
+    double      shear_modulus_at(double T) const override { return elastic.shear_modulus(T); }
+    double      thermal_strain(double T, double dT) const override
+    {
+      return elastic.thermal_strain(T, dT);
+    }
     double      bulk_modulus() const override { return elastic.bulk_modulus(); }
     double      shear_modulus() const override { return elastic.shear_modulus(); }
     double      density() const override { return elastic.density; }
@@ -174,9 +184,10 @@ namespace anvil
      * strain increment Δε. Every update keeps them (12 numbers per point), so
      * the audit at commit needs neither ΔR nor the material's kinematics.
      */
+    bool keeps_last_step() const override { return true; }
     void last_step(const MaterialPoint                  &point,
                    const dealii::SymmetricTensor<2, 3> *&mean_stress,
-                   const dealii::SymmetricTensor<2, 3> *&strain_increment) const;
+                   const dealii::SymmetricTensor<2, 3> *&strain_increment) const override;
 
   private:
     void                                        prepare_kernel() const;

@@ -204,22 +204,46 @@ namespace anvil
   };
 
   /**
-   * @p n points of type Point (constructed from @p args) in one array, each
-   * handed out as a shared_ptr that shares the array's ownership (aliasing
-   * constructor): 8 points per hexahedron made 8 heap objects and 8 control
-   * blocks, ~50 B of allocator overhead per point (doc/performance.md).
+   * What the points of a body must hold beyond the law's state, known when
+   * they are made (MaterialModel::create_points()): a law may then choose a
+   * point type that carries exactly that in the body's block.
+   */
+  struct PointOptions
+  {
+    /// The points will be updated with MaterialIncrement::adiabatic (the
+    /// Armero–Simo split): they keep the adiabatic iteration's state inline.
+    bool adiabatic = false;
+  };
+
+  /**
+   * The points of one body: `points` point into storage that `owner` keeps
+   * alive (one block for a law whose points are of one type). The point
+   * table keeps the pointers, the body the owner: no reference count per
+   * point (a shared_ptr per point was 16 B and an atomic per copy).
+   */
+  struct PointBlock
+  {
+    std::shared_ptr<void>        owner;
+    std::vector<MaterialPoint *> points;
+  };
+
+  /**
+   * @p n points of type Point (constructed from @p args) in one array: 8
+   * points per hexahedron made 8 heap objects and 8 control blocks, ~50 B of
+   * allocator overhead per point (doc/performance.md).
    */
   template <class Point, class... Args>
-  std::vector<std::shared_ptr<MaterialPoint>> contiguous_points(const std::size_t n,
-                                                                const Args &...args)
+  PointBlock contiguous_points(const std::size_t n, const Args &...args)
   {
     auto block = std::make_shared<std::vector<Point>>();
     block->reserve(n);
     for (std::size_t i = 0; i < n; ++i)
       block->emplace_back(args...);
-    std::vector<std::shared_ptr<MaterialPoint>> points(n);
+    PointBlock points;
+    points.points.resize(n);
     for (std::size_t i = 0; i < n; ++i)
-      points[i] = std::shared_ptr<MaterialPoint>(block, &(*block)[i]);
+      points.points[i] = &(*block)[i];
+    points.owner = std::move(block);
     return points;
   }
 
@@ -258,18 +282,22 @@ namespace anvil
                                   const Scene              &scene,
                                   const std::string        &path) = 0;
 
-    virtual std::unique_ptr<MaterialPoint> create_point() const = 0;
+    /// One point (@p options: what it must hold, as for create_points()).
+    virtual std::unique_ptr<MaterialPoint> create_point(const PointOptions &options = {}) const = 0;
     /**
      * @p n points at once. The default makes one heap object each; a law
      * whose points are of one type returns contiguous_points(): one block,
-     * no per-point allocation or reference count.
+     * no per-point allocation.
      */
-    virtual std::vector<std::shared_ptr<MaterialPoint>> create_points(const std::size_t n) const
+    virtual PointBlock create_points(const std::size_t n, const PointOptions &options = {}) const
     {
-      std::vector<std::shared_ptr<MaterialPoint>> points(n);
-      for (auto &p : points)
-        p = create_point();
-      return points;
+      auto owned = std::make_shared<std::vector<std::unique_ptr<MaterialPoint>>>(n);
+      PointBlock block;
+      block.points.resize(n);
+      for (std::size_t i = 0; i < n; ++i)
+        block.points[i] = ((*owned)[i] = create_point(options)).get();
+      block.owner = std::move(owned);
+      return block;
     }
 
     /// Small-strain elastic moduli (for the tangent's scale, stable time steps, AMG).
@@ -284,6 +312,29 @@ namespace anvil
     /// equivalent plastic strain @p eps: checked on converged states and on
     /// the scene's initial temperatures, never on trial iterates (issue 17).
     virtual StrengthLoss strength_lost(double /*T*/, double /*eps*/) const { return {}; }
+    /// Whether strength_lost() can ever report at any (T, ε̄ ≥ 0); false lets
+    /// the strength check skip the body's points (the same on every process).
+    virtual bool may_lose_strength() const { return true; }
+
+    /// The elastic moduli at temperature @p T (K), MPa (the energy audit's
+    /// elastic energy, the dynamics' strain energy); constant by default.
+    virtual double bulk_modulus_at(double /*T*/) const { return bulk_modulus(); }
+    virtual double shear_modulus_at(double /*T*/) const { return shear_modulus(); }
+    /// The thermal strain of a step from T − @p dT to @p T (per direction; none by default).
+    virtual double thermal_strain(double /*T*/, double /*dT*/) const { return 0; }
+
+    /**
+     * Whether the points keep what the energy audit needs of their last
+     * update (last_step()), so the audit need not recompute the material's
+     * kinematics: σ̄ = ½(ΔR σₙ ΔRᵀ + σ) and Δε.
+     */
+    virtual bool keeps_last_step() const { return false; }
+    /// σ̄ and Δε of the last update of @p point (a point of this model; only
+    /// if keeps_last_step()), valid until the thread's next call.
+    virtual void last_step(const MaterialPoint & /*point*/,
+                           const dealii::SymmetricTensor<2, 3> *& /*mean_stress*/,
+                           const dealii::SymmetricTensor<2, 3> *& /*strain_increment*/) const
+    {}
   };
 
   /// A material point that cannot be updated (e.g. the yield stress vanished

@@ -73,7 +73,7 @@ namespace anvil
       /// The bodies' material models (the energy audit reads their elastic laws).
       const std::map<dealii::types::material_id, std::shared_ptr<const MaterialModel>> *materials =
         nullptr;
-      PointData<std::shared_ptr<MaterialPoint>> *points                   = nullptr;
+      PointData<MaterialPoint *>                *points                   = nullptr;
       PointData<double>                         *heat_sources             = nullptr;
       PointData<double>                         *thermoelastic_sources    = nullptr;
       PointData<double>                         *plastic_work_rates       = nullptr; // Ẇirr, the audit's

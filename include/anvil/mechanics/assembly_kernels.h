@@ -6,8 +6,6 @@
 
 namespace anvil
 {
-  class J2Model;
-
   namespace MechanicsAssembly
   {
     /*
@@ -108,10 +106,10 @@ namespace anvil
     private:
       /// The energy audit's terms of point @p q over the step (AuditTerm), after its update
       /// (@p true_kin: work space for the true F's kinematics with F-bar).
-      /// (@p j2: @p model if it is a J2Model, for its temperature-dependent moduli.)
+      /// (@p kept: model.keeps_last_step(), asked once per cell.)
       void audit_terms(const CellIterator<dim>    &cell,
                        const MaterialModel        &model,
-                       const J2Model              *j2,
+                       bool                        kept,
                        unsigned int                q,
                        const dealii::Tensor<2, 3> &F,
                        const dealii::Tensor<2, 3> &F_old,

@@ -72,12 +72,17 @@ namespace anvil
     return dim == 2 ? 50000 : 2000;
   }
 
+  /// GMRES's Krylov basis before a restart: the default of Mechanics/Linear
+  /// solver/GMRES restart (parameters.cc, where the choice is documented)
+  /// and of the structs that carry it.
+  constexpr unsigned int default_gmres_restart = 60;
+
   struct IterativeSolverSettings
   {
     double       tolerance      = 1e-8; // relative to |b|
     unsigned int max_iterations = 1000;
     /// GMRES's Krylov basis before a restart (8 B per DoF per vector).
-    unsigned int restart        = 28;
+    unsigned int restart        = default_gmres_restart;
     bool         higher_order   = false; // Q2
     /// Chebyshev degree of ML's smoother on every level (the fine level's
     /// unless aggregate_blocks).

@@ -94,7 +94,7 @@ namespace anvil
       std::string  linear_solver                = "automatic";
       double       linear_tolerance             = 1e-10;
       unsigned int linear_max_iterations        = 1000;
-      unsigned int gmres_restart                = 28;    // Krylov basis size before a restart
+      unsigned int gmres_restart                = default_gmres_restart; // Krylov basis before a restart
       std::string  preconditioner               = "AMG"; // AMG | geometric (geometric_coarse_space.h)
       double       amg_rebuild_growth           = 0;
       // AMG (linear_solver.h): 0 / "automatic" chosen per solve in solve_linear_system().
@@ -224,6 +224,8 @@ namespace anvil
     {
       temperature_field = field;
       adiabatic_split   = adiabatic;
+      if (adiabatic != point_options.adiabatic)
+        make_points({adiabatic});
     }
     /// The temperature every point starts from (heat scenes), per point in
     /// PointData order (cell by active cell index, then quadrature point).
@@ -422,8 +424,15 @@ namespace anvil
     dealii::TrilinosWrappers::MPI::Vector  solution, old_solution;       // ghosted
     dealii::TrilinosWrappers::MPI::Vector  owned_solution, owned_old_solution;
 
-    // One material point per quadrature point of each locally owned cell.
-    PointData<std::shared_ptr<MaterialPoint>> points;
+    // One material point per quadrature point of each locally owned cell,
+    // in the blocks of its body (MaterialModel::create_points()), which
+    // point_blocks own.
+    PointData<MaterialPoint *>         points;
+    std::vector<std::shared_ptr<void>> point_blocks;
+    PointOptions                       point_options; // what the points were made for
+    /// The points of every locally owned cell for @p options, with the
+    /// committed state of the points they replace (if any).
+    void make_points(const PointOptions &options);
     ContactProblem<dim>                        *contact = nullptr;
     dealii::IndexSet                            constraint_lines; // relevant + contact surface dofs
     /// The matrix and its sparsity: the cells' couplings and the contact's.
@@ -467,6 +476,9 @@ namespace anvil
     dealii::Tensor<1, dim> gravity; // mm/s², body force ρ g
     double assembly_rate = 0;
     double current_time_step = 1, current_time = 0, previous_time_step = 0, mesh_diameter = 1;
+    /// The largest locally owned cell's diameter over all processes, mm
+    /// (residual_floor()): set with the dofs (the mesh does not move).
+    double largest_cell_diameter = 0;
     dealii::TrilinosWrappers::MPI::Vector previous_increment; // Δu of the last accepted step
     unsigned int last_step_iterations = 0; // Newton iterations of the last converged solve_step
     // Checkpoint transfer (alive between prepare and the triangulation's save).
@@ -483,6 +495,8 @@ namespace anvil
     mutable std::map<dealii::types::boundary_id,
                      std::vector<std::pair<dealii::types::global_dof_index, unsigned int>>>
       boundary_dofs; // owned_boundary_dofs()
+    /// boundary_dofs holds every boundary this process sees (built once per numbering).
+    mutable bool boundary_dofs_listed = false;
     /// The assembly's work space, kept from one assembly to the next (its
     /// FEValues cost ~120 000 instructions to build; assembly.cc). Declared
     /// after the mapping and the element it points to, so destroyed first.

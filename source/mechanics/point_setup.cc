@@ -1,0 +1,83 @@
+// The material points of the mechanics and the per-point data beside them:
+// a block per body from its law (MaterialModel::create_points), the table of
+// pointers into the blocks in cell order (PointData).
+#include <anvil/core/input_error.h>
+#include <anvil/core/instantiate.h>
+#include <anvil/mechanics/element_formulation.h>
+#include <anvil/mechanics/mechanical_problem.h>
+
+#include <limits>
+#include <map>
+
+namespace anvil
+{
+  using namespace dealii;
+
+  template <int dim>
+  void MechanicalProblem<dim>::setup_quadrature_point_data()
+  {
+    const unsigned int n_q = quadrature.size();
+    points.reinit(triangulation, n_q, nullptr);
+    point_blocks.clear();
+    heat_sources.reinit(triangulation, n_q, 0.);
+    thermoelastic_sources.reinit(triangulation, n_q, 0.);
+    plastic_work_rates.reinit(triangulation, n_q, 0.);
+    if (parameters.dynamic)
+      node_masses.reinit(triangulation, formulation->n_nodes * formulation->n_nodes,
+                         std::numeric_limits<double>::quiet_NaN());
+    step_start.reinit(triangulation, fe.n_dofs_per_cell(), n_q);
+    material_temperature.reinit(triangulation, n_q, parameters.temperature);
+    material_temperature_old = material_temperature;
+    make_points(point_options);
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::make_points(const PointOptions &options)
+  {
+    // One block of points per body (MaterialModel::create_points), handed
+    // out in cell order.
+    const unsigned int                        n_q = quadrature.size();
+    std::map<types::material_id, std::size_t> count;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          if (materials.find(cell->material_id()) == materials.end())
+            throw InputError("internal: no material for body id " +
+                             std::to_string(cell->material_id()));
+          count[cell->material_id()] += n_q;
+        }
+    std::map<types::material_id, PointBlock> made;
+    for (const auto &[id, n] : count)
+      made[id] = materials.find(id)->second->create_points(n, options);
+    std::map<types::material_id, std::size_t> next;
+    for (const auto &cell : triangulation.active_cell_iterators())
+      if (cell->is_locally_owned())
+        {
+          std::size_t &k = next[cell->material_id()];
+          for (unsigned int q = 0; q < n_q; ++q)
+            {
+              MaterialPoint *&point = points(cell, q);
+              MaterialPoint  *fresh = made[cell->material_id()].points[k++];
+              // The committed state of the point replaced (points made again
+              // for other options, set_temperature_field()), unless it is
+              // still the state of a new point (no stress, no plastic
+              // strain: before the first step, where the coupling scheme
+              // connects the temperatures): no save_state() vector per point.
+              if (point && (point->committed_stress().norm() != 0 || point->stress().norm() != 0 ||
+                            point->committed_equivalent_plastic_strain() != 0))
+                fresh->load_state(point->save_state());
+              point = fresh;
+            }
+        }
+    point_blocks.clear(); // (the replaced points, after their state was read)
+    for (auto &[id, block] : made)
+      point_blocks.push_back(std::move(block.owner));
+    point_options = options;
+  }
+
+#define INSTANTIATE(dim)                                                          \
+  template void MechanicalProblem<dim>::setup_quadrature_point_data();           \
+  template void MechanicalProblem<dim>::make_points(const PointOptions &);
+  ANVIL_INSTANTIATE(INSTANTIATE)
+#undef INSTANTIATE
+} // namespace anvil
