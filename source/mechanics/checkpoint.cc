@@ -59,61 +59,67 @@ namespace anvil
     // One block per owned cell (checkpoint format 3): the cell's dof values
     // of each vector in checkpoint_targets() order, per point (size, state),
     // the points' temperatures at the end of their last step (heat scenes).
-    // Packed here, each state saved once; deal.II's SolutionTransfer packed
-    // nine vectors of dealii::Vector through boost per cell (~18 k
-    // instructions a cell: 569 M on one process of the contact strip).
+    // Each state saved once; deal.II's SolutionTransfer packed nine vectors
+    // of dealii::Vector through boost per cell (~18 k instructions a cell:
+    // 569 M on one process of the contact strip). Packed when deal.II asks
+    // for the cell, into the bytes it keeps: a whole-process buffer packed
+    // first was the run's memory peak on the 3D plastic block with the
+    // geometric preconditioner (doc/memory.md, session 20).
+    struct Packer
+    {
+      std::vector<TrilinosWrappers::MPI::Vector> vectors;
+      std::vector<types::global_dof_index>       dofs;
+      std::vector<int>                           lids;
+      std::vector<double>                        block;
+    };
+    auto packer     = std::make_shared<Packer>();
+    packer->vectors = std::move(checkpoint_vectors);
+    checkpoint_vectors.clear(); // held by the packer until the save: not through the run
     const unsigned int n_q = quadrature.size(), n_dofs = fe.n_dofs_per_cell();
-    auto blocks = std::make_shared<std::vector<double>>();
-    auto where  = std::make_shared<std::vector<std::pair<std::size_t, std::size_t>>>(
-      triangulation.n_active_cells());
-    std::size_t                          longest = 0;
-    std::vector<types::global_dof_index> dofs(n_dofs);
-    std::vector<int>                     lids(n_dofs);
-    const Epetra_BlockMap               &ghosted = checkpoint_vectors[0].trilinos_vector().Map();
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
+    packer->dofs.resize(n_dofs);
+    packer->lids.resize(n_dofs);
+    const auto pack = [this, packer, n_q, n_dofs](const auto &tria_cell) -> const std::vector<double> & {
+      const typename DoFHandler<dim>::active_cell_iterator cell(&triangulation, tria_cell->level(),
+                                                                tria_cell->index(), &dof_handler);
+      Packer                &p       = *packer;
+      const Epetra_BlockMap &ghosted = p.vectors[0].trilinos_vector().Map();
+      cell->get_dof_indices(p.dofs);
+      for (unsigned int j = 0; j < n_dofs; ++j)
+        p.lids[j] = ghosted.LID(static_cast<TrilinosWrappers::types::int_type>(p.dofs[j]));
+      p.block.clear();
+      for (const auto &v : p.vectors)
         {
-          const std::size_t begin = blocks->size();
-          cell->get_dof_indices(dofs);
+          const double *const values = v.trilinos_vector()[0];
           for (unsigned int j = 0; j < n_dofs; ++j)
-            lids[j] = ghosted.LID(static_cast<TrilinosWrappers::types::int_type>(dofs[j]));
-          for (const auto &v : checkpoint_vectors)
-            {
-              const double *const values = v.trilinos_vector()[0];
-              for (unsigned int j = 0; j < n_dofs; ++j)
-                blocks->push_back(values[lids[j]]);
-            }
-          for (unsigned int q = 0; q < n_q; ++q)
-            {
-              const auto state = points(cell, q)->save_state();
-              blocks->push_back(state.size());
-              blocks->insert(blocks->end(), state.begin(), state.end());
-            }
-          for (unsigned int q = 0; q < n_q; ++q)
-            blocks->push_back(material_temperature_old(cell, q));
-          (*where)[cell->active_cell_index()] = {begin, blocks->size() - begin};
-          // Grown by push_back the buffer would double up to twice its
-          // content, the run's memory peak on the 3D plastic block with the
-          // geometric preconditioner (doc/memory.md, session 20): reserve
-          // what the first cell's block says all will need (exact when the
-          // cells' states are alike; a longer one later grows it as before).
-          if (begin == 0)
-            blocks->reserve(blocks->size() * triangulation.n_locally_owned_active_cells());
-          longest = std::max(longest, blocks->size() - begin);
+            p.block.push_back(values[p.lids[j]]);
         }
-    checkpoint_vectors.clear(); // packed: not held through the run
+      for (unsigned int q = 0; q < n_q; ++q)
+        {
+          const auto state = points(cell, q)->save_state();
+          p.block.push_back(state.size());
+          p.block.insert(p.block.end(), state.begin(), state.end());
+        }
+      for (unsigned int q = 0; q < n_q; ++q)
+        p.block.push_back(material_temperature_old(cell, q));
+      return p.block;
+    };
     // A fully distributed triangulation (Geometry/Partition = per body) saves
     // only fixed-size data (deal.II 9.4): every cell's block is padded to the
     // longest one, which its sizes make self-describing on reading.
-    auto &tria = const_cast<parallel::DistributedTriangulationBase<dim> &>(triangulation);
-    const bool        fixed  = !is_p4est(triangulation);
+    auto &tria  = const_cast<parallel::DistributedTriangulationBase<dim> &>(triangulation);
+    const bool fixed = !is_p4est(triangulation);
+    std::size_t longest = 0;
+    if (fixed)
+      for (const auto &cell : triangulation.active_cell_iterators())
+        if (cell->is_locally_owned())
+          longest = std::max(longest, pack(cell).size());
     const std::size_t padded = fixed ? Utilities::MPI::max(longest, mpi_communicator) : 0;
     checkpoint_handle = tria.register_data_attach(
-      [blocks, where, padded](const typename Triangulation<dim>::cell_iterator &cell,
-                              const typename Triangulation<dim>::CellStatus) {
-        const auto [begin, length] = (*where)[cell->active_cell_index()];
-        std::vector<char> bytes(std::max(length, padded) * sizeof(double), 0);
-        std::memcpy(bytes.data(), blocks->data() + begin, length * sizeof(double));
+      [pack, padded](const typename Triangulation<dim>::cell_iterator &cell,
+                     const typename Triangulation<dim>::CellStatus) {
+        const std::vector<double> &block = pack(cell);
+        std::vector<char>          bytes(std::max(block.size(), padded) * sizeof(double), 0);
+        std::memcpy(bytes.data(), block.data(), block.size() * sizeof(double));
         return bytes;
       },
       /*returns_variable_size_data=*/!fixed);
