@@ -9,6 +9,8 @@
 
 #include <anvil/mechanics/linear_solver.h>
 
+#include "gmres_run.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -256,90 +258,13 @@ namespace anvil
     }
   } // namespace
 
-  namespace
-  {
-    /**
-     * SolverControl that also gives up on a stalled solve: when the
-     * residual has not fallen below half of the best it had reached
-     * `window` iterations earlier. A stalled solve does not recover: the
-     * 2D 256² plastic F-bar block's second Newton iteration of step 1's full
-     * step (whose tangent KLU solves to 2e-14) sat at |r| ≈ |b| for all
-     * 1000 iterations (its true residual at the end 18 |b|) before the step
-     * was cut back anyway; with the stop it fails after one cycle (60
-     * iterations). A converging solve gains far more per cycle: the onset
-     * solve of the same step (63 iterations to 1e-8) ~50×, the slowest
-     * converging solve seen (460, the rigid-body modes only, GMRES(28))
-     * ~3× per 28 iterations. doc/linear_solver.md, sessions 19 and 20.
-     */
-    class StallControl : public SolverControl
-    {
-    public:
-      StallControl(const unsigned int max_steps, const double tolerance, const unsigned int window)
-        : SolverControl(max_steps, tolerance)
-        , window(window)
-      {}
-
-      State check(const unsigned int step, const double value) override
-      {
-        const State state = SolverControl::check(step, value);
-        if (state != iterate)
-          return state;
-        // GMRES reports a restart's step twice (its estimate, then the true
-        // residual): the best of the two.
-        if (step < best.size())
-          best[step] = std::min(best[step], value);
-        else
-          {
-            const double before = best.empty() ? value : best.back();
-            best.resize(step, before);
-            best.push_back(std::min(before, value));
-          }
-        if (step >= window && value > 0.5 * best[step - window])
-          {
-            lcheck = failure;
-            return failure;
-          }
-        return state;
-      }
-
-    private:
-      const unsigned int  window;
-      /// best[s]: the smallest residual up to step s.
-      std::vector<double> best;
-    };
-  } // namespace
-
   unsigned int solve_gmres(const TrilinosWrappers::SparseMatrix    &K,
                            TrilinosWrappers::MPI::Vector           &x,
                            const TrilinosWrappers::MPI::Vector     &b,
                            const TrilinosWrappers::PreconditionAMG &amg,
                            const IterativeSolverSettings           &settings)
   {
-    // One restart cycle without halving the residual: stalled (two cycles,
-    // session 19, cost the 2D 256² block's stalled solve 120 iterations
-    // for nothing; a converging solve gains >= 10x per cycle of 60:
-    // doc/linear_solver.md, session 20).
-    StallControl control(settings.max_iterations, settings.tolerance * b.l2_norm(), settings.restart);
-    // Right preconditioning: the test is on the true residual |b − K x|
-    // (left preconditioning would test |P⁻¹(b − K x)|, in mm, against a
-    // tolerance in N). deal.II keeps restart + 2 vectors, 8 B per DoF each.
-    SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
-      control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(settings.restart + 2, true));
-    // deal.II's vector pool keeps the Krylov basis (~32 vectors, 256 B per
-    // DoF) after the solve, and the next AMG set-up, the run's memory peak,
-    // would sit on top of it: give it back (a few page faults per solve).
-    const auto release = [] { GrowingVectorMemory<TrilinosWrappers::MPI::Vector>::release_unused_memory(); };
-    try
-      {
-        gmres.solve(K, x, b, amg);
-      }
-    catch (...)
-      {
-        release();
-        throw;
-      }
-    release();
-    return control.last_step();
+    return run_gmres(K, x, b, amg, settings);
   }
 
   unsigned int ReusedAMG::solve(const TrilinosWrappers::SparseMatrix      &K,

@@ -11,6 +11,7 @@
 #include <anvil/core/instantiate.h>
 
 #include "geometric_coarse_space.h"
+#include "gmres_run.h"
 
 #include <algorithm>
 #include <array>
@@ -358,21 +359,8 @@ namespace anvil
       ratio = std::atof(s);
     const TwoLevelPreconditioner preconditioner(K, make_coarse_space(dof_handler, constraints, K), fine_modes(),
                                                 coarse, degree, ratio);
-    SolverControl control(settings.max_iterations, settings.tolerance * b.l2_norm());
-    SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
-      control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(settings.restart + 2, true));
-    const auto release = [] { GrowingVectorMemory<TrilinosWrappers::MPI::Vector>::release_unused_memory(); };
-    try
-      {
-        gmres.solve(K, x, b, preconditioner);
-      }
-    catch (...)
-      {
-        release();
-        throw;
-      }
-    release();
-    return control.last_step();
+    // The same GMRES as ML's (stall stop, pool given back).
+    return run_gmres(K, x, b, preconditioner, settings);
   }
 
 #define INSTANTIATE(dim)                                                                                   \
