@@ -3,7 +3,6 @@
 // resume on any number of processes.
 #include <deal.II/distributed/solution_transfer.h>
 
-#include <Epetra_Import.h>
 
 #include <anvil/core/instantiate.h>
 #include <anvil/mechanics/mechanical_problem.h>
@@ -35,73 +34,90 @@ namespace anvil
   template <int dim>
   void MechanicalProblem<dim>::prepare_checkpoint()
   {
-    // Ghosted copies of the vectors (a cell's dofs may be another process's),
-    // one layout and one import for all of them (deal.II's operator= from an
-    // owned vector builds an Epetra_Import per copy: ~9 M instructions each on
-    // two processes of the contact strip).
+    // One block per owned cell (checkpoint format 4):
+    //   the mask of the vectors of checkpoint_targets() saved (those not zero
+    //   everywhere: a quasi-static scene's velocity, acceleration and contact
+    //   force are not), the number c of the cell's dofs it carries and their
+    //   positions in the cell, the carried values of each saved vector, then
+    //   per point (size, state) and the points' temperatures at the end of
+    //   their last step (heat scenes).
+    // Each owned dof is carried by one cell of its owner (the first in active
+    // order), not by every cell around it: format 3 saved each vertex's values
+    // eight times (3D Q1), 9 × 24 doubles a cell, most of the checkpoint, and
+    // deal.II holds the blocks twice while it saves (the cells' pieces and the
+    // process's buffer): that was the run's memory peak on the 3D plastic
+    // block (doc/memory.md, session 21). The values are read from the owned
+    // vectors in place, without ghosted copies.
     const auto targets = checkpoint_targets();
     checkpoint_transfer.reset();
-    checkpoint_vectors.assign(1, TrilinosWrappers::MPI::Vector(locally_owned_dofs, locally_relevant_dofs,
-                                                               mpi_communicator));
-    checkpoint_vectors.resize(targets.size(), checkpoint_vectors[0]);
-    const Epetra_BlockMap &source = targets[0]->trilinos_vector().Map();
-    const Epetra_Import    import(checkpoint_vectors[0].trilinos_vector().Map(), source);
+    checkpoint_vectors.clear();
+    unsigned int mask = 0;
     for (unsigned int i = 0; i < targets.size(); ++i)
-      if (targets[i]->trilinos_vector().Map().SameAs(source))
-        {
-          const int ierr =
-            checkpoint_vectors[i].trilinos_vector().Import(targets[i]->trilinos_vector(), import, Insert);
-          AssertThrow(ierr == 0, ExcMessage("prepare_checkpoint: Epetra import failed"));
-        }
-      else
-        checkpoint_vectors[i] = *targets[i];
-
-    // One block per owned cell (checkpoint format 3): the cell's dof values
-    // of each vector in checkpoint_targets() order, per point (size, state),
-    // the points' temperatures at the end of their last step (heat scenes).
-    // Each state saved once; deal.II's SolutionTransfer packed nine vectors
-    // of dealii::Vector through boost per cell (~18 k instructions a cell:
-    // 569 M on one process of the contact strip). Packed when deal.II asks
-    // for the cell, into the bytes it keeps: a whole-process buffer packed
-    // first was the run's memory peak on the 3D plastic block with the
-    // geometric preconditioner (doc/memory.md, session 20).
-    struct Packer
+      if (targets[i]->size() > 0 && targets[i]->linfty_norm() > 0)
+        mask |= 1u << i;
+    struct Carried
     {
-      std::vector<TrilinosWrappers::MPI::Vector> vectors;
-      std::vector<types::global_dof_index>       dofs;
-      std::vector<int>                           lids;
-      std::vector<double>                        block;
+      std::vector<unsigned int>              start; // per active cell index, into positions
+      std::vector<unsigned short>            positions;
+      std::vector<types::global_dof_index>   dofs;
+      std::vector<double>                    block;
     };
-    auto packer     = std::make_shared<Packer>();
-    packer->vectors = std::move(checkpoint_vectors);
-    checkpoint_vectors.clear(); // held by the packer until the save: not through the run
+    auto carried = std::make_shared<Carried>();
+    {
+      std::vector<bool> taken(locally_owned_dofs.n_elements(), false);
+      std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
+      carried->start.assign(triangulation.n_active_cells() + 1, 0);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        {
+          const unsigned int index = cell->active_cell_index();
+          if (cell->is_locally_owned())
+            {
+              cell->get_dof_indices(dofs);
+              for (unsigned int j = 0; j < dofs.size(); ++j)
+                if (locally_owned_dofs.is_element(dofs[j]))
+                  {
+                    const auto k = locally_owned_dofs.index_within_set(dofs[j]);
+                    if (!taken[k])
+                      {
+                        taken[k] = true;
+                        carried->positions.push_back(j);
+                      }
+                  }
+            }
+          carried->start[index + 1] = carried->positions.size();
+        }
+    }
     const unsigned int n_q = quadrature.size(), n_dofs = fe.n_dofs_per_cell();
-    packer->dofs.resize(n_dofs);
-    packer->lids.resize(n_dofs);
-    const auto pack = [this, packer, n_q, n_dofs](const auto &tria_cell) -> const std::vector<double> & {
+    carried->dofs.resize(n_dofs);
+    const auto pack = [this, carried, targets, mask, n_q](const auto &tria_cell) -> const std::vector<double> & {
       const typename DoFHandler<dim>::active_cell_iterator cell(&triangulation, tria_cell->level(),
                                                                 tria_cell->index(), &dof_handler);
-      Packer                &p       = *packer;
-      const Epetra_BlockMap &ghosted = p.vectors[0].trilinos_vector().Map();
-      cell->get_dof_indices(p.dofs);
-      for (unsigned int j = 0; j < n_dofs; ++j)
-        p.lids[j] = ghosted.LID(static_cast<TrilinosWrappers::types::int_type>(p.dofs[j]));
-      p.block.clear();
-      for (const auto &v : p.vectors)
-        {
-          const double *const values = v.trilinos_vector()[0];
-          for (unsigned int j = 0; j < n_dofs; ++j)
-            p.block.push_back(values[p.lids[j]]);
-        }
+      Carried           &c     = *carried;
+      const unsigned int index = cell->active_cell_index();
+      cell->get_dof_indices(c.dofs);
+      c.block.clear();
+      c.block.push_back(mask);
+      c.block.push_back(c.start[index + 1] - c.start[index]);
+      for (unsigned int k = c.start[index]; k < c.start[index + 1]; ++k)
+        c.block.push_back(c.positions[k]);
+      for (unsigned int i = 0; i < targets.size(); ++i)
+        if (mask & (1u << i))
+          {
+            const Epetra_BlockMap &map    = targets[i]->trilinos_vector().Map();
+            const double *const    values = targets[i]->trilinos_vector()[0];
+            for (unsigned int k = c.start[index]; k < c.start[index + 1]; ++k)
+              c.block.push_back(
+                values[map.LID(static_cast<TrilinosWrappers::types::int_type>(c.dofs[c.positions[k]]))]);
+          }
       for (unsigned int q = 0; q < n_q; ++q)
         {
           const auto state = points(cell, q)->save_state();
-          p.block.push_back(state.size());
-          p.block.insert(p.block.end(), state.begin(), state.end());
+          c.block.push_back(state.size());
+          c.block.insert(c.block.end(), state.begin(), state.end());
         }
       for (unsigned int q = 0; q < n_q; ++q)
-        p.block.push_back(material_temperature_old(cell, q));
-      return p.block;
+        c.block.push_back(material_temperature_old(cell, q));
+      return c.block;
     };
     // A fully distributed triangulation (Geometry/Partition = per body) saves
     // only fixed-size data (deal.II 9.4): every cell's block is padded to the
@@ -138,32 +154,47 @@ namespace anvil
          const typename Triangulation<dim>::CellStatus) { return std::vector<char>(); },
       /*returns_variable_size_data=*/is_p4est(triangulation));
     std::vector<types::global_dof_index> dofs(n_dofs);
+    // A carried dof whose owner is now another process (restart on another
+    // partition): sent to it by the vector's compress(insert) below.
+    std::vector<std::vector<types::global_dof_index>> remote_dofs(targets.size());
+    std::vector<std::vector<double>>                  remote_values(targets.size());
+    unsigned int                                      mask = 0;
     tria.notify_ready_to_unpack(
       handle,
-      [&, n_q, n_dofs](const typename Triangulation<dim>::cell_iterator &cell,
-                       const typename Triangulation<dim>::CellStatus,
-                       const boost::iterator_range<std::vector<char>::const_iterator> &bytes) {
+      [&, n_q](const typename Triangulation<dim>::cell_iterator &cell,
+               const typename Triangulation<dim>::CellStatus,
+               const boost::iterator_range<std::vector<char>::const_iterator> &bytes) {
         std::vector<double> data(std::distance(bytes.begin(), bytes.end()) / sizeof(double));
         std::memcpy(data.data(), &*bytes.begin(), data.size() * sizeof(double));
-        AssertThrow(data.size() >= targets.size() * n_dofs, ExcMessage("checkpoint: a cell's block is short"));
-        // The owned dofs of the owned cells: every owned dof is on one of them.
+        AssertThrow(data.size() >= 2, ExcMessage("checkpoint: a cell's block is short"));
         typename DoFHandler<dim>::active_cell_iterator(&triangulation, cell->level(), cell->index(), &dof_handler)
           ->get_dof_indices(dofs);
-        std::size_t k = 0;
-        for (auto *v : targets)
-          {
-            const Epetra_BlockMap &map    = v->trilinos_vector().Map();
-            double *const          values = v->trilinos_vector()[0];
-            for (unsigned int j = 0; j < n_dofs; ++j, ++k)
-              {
-                const int lid = map.LID(static_cast<TrilinosWrappers::types::int_type>(dofs[j]));
-                if (lid >= 0)
-                  values[lid] = data[k];
-              }
-          }
+        mask                       = static_cast<unsigned int>(data[0]);
+        const std::size_t n_carried = static_cast<std::size_t>(data[1]);
+        std::size_t       k         = 2 + n_carried;
+        AssertThrow(data.size() >= k, ExcMessage("checkpoint: a cell's block is short"));
+        for (unsigned int i = 0; i < targets.size(); ++i)
+          if (mask & (1u << i))
+            {
+              const Epetra_BlockMap &map    = targets[i]->trilinos_vector().Map();
+              double *const          values = targets[i]->trilinos_vector()[0];
+              for (std::size_t c = 0; c < n_carried; ++c, ++k)
+                {
+                  const auto dof = dofs.at(static_cast<unsigned int>(data[2 + c]));
+                  const int  lid = map.LID(static_cast<TrilinosWrappers::types::int_type>(dof));
+                  if (lid >= 0)
+                    values[lid] = data.at(k);
+                  else
+                    {
+                      remote_dofs[i].push_back(dof);
+                      remote_values[i].push_back(data.at(k));
+                    }
+                }
+            }
         for (unsigned int q = 0; q < n_q; ++q)
           {
             const std::size_t   size = static_cast<std::size_t>(data.at(k++));
+            AssertThrow(k + size <= data.size(), ExcMessage("checkpoint: a cell's block is short"));
             std::vector<double> state(data.begin() + k, data.begin() + k + size);
             k += size;
             points(cell, q)->load_state(state);
@@ -171,6 +202,16 @@ namespace anvil
         for (unsigned int q = 0; q < n_q; ++q)
           material_temperature_old(cell, q) = material_temperature(cell, q) = data.at(k++);
       });
+    // A process without cells has read no mask.
+    mask = Utilities::MPI::max(mask, mpi_communicator);
+    for (unsigned int i = 0; i < targets.size(); ++i)
+      if (mask & (1u << i))
+        {
+          targets[i]->set(remote_dofs[i], remote_values[i]);
+          targets[i]->compress(VectorOperation::insert);
+        }
+      else if (targets[i]->size() > 0)
+        *targets[i] = 0;
 
     owned_solution           = owned_old_solution;
     solution                 = owned_solution;

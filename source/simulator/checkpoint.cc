@@ -27,8 +27,10 @@ namespace anvil
     // per line ("key value..."), then the contact state after a "contact" line.
     // A new entry is a new key: restarts read by name, never by position.
     // Format 3 (session 18): the mechanics' vectors packed with its points
-    // per cell, not through deal.II's SolutionTransfer.
-    constexpr int checkpoint_format = 3;
+    // per cell, not through deal.II's SolutionTransfer. Format 4 (session
+    // 21): each dof's values once, with one cell of its owner; zero vectors
+    // not saved (mechanics/checkpoint.cc).
+    constexpr int checkpoint_format = 4;
     const char   *checkpoint_magic  = "anvil-checkpoint";
 
     // Size and FNV-1a hash of a file: a checkpoint's mesh files damaged or cut
