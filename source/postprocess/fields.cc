@@ -45,6 +45,39 @@ namespace anvil
 
     void write(const SimulationState<dim> &s) override
     {
+      write_fields(s);
+      // The mesh's arrays (points, cells, vertex dofs, the nodal numbering)
+      // are kept for the next write only when it is the next step's: held
+      // between rare writes they were ~0.2 KB/DoF of the 3D plastic block's
+      // peak (doc/memory.md, session 21). Made again, they are the same.
+      if (!this->schedule.every_step())
+        release_mesh_arrays();
+    }
+
+    void release_mesh_arrays()
+    {
+      raw_mesh  = nullptr;
+      raw_cells = 0;
+      piece     = VtuPiece();
+      std::vector<unsigned int>().swap(cell_index);
+      std::vector<types::global_dof_index>().swap(vertex_dofs);
+      std::vector<types::global_dof_index>().swap(heat_dofs);
+      std::vector<unsigned int>().swap(nodal_vertex);
+      vertex_lids = LocalIndices();
+      heat_lids   = LocalIndices();
+      nodal_mesh  = nullptr;
+      nodal_cells = 0;
+      std::vector<NodalVector>().swap(nodal_values);
+      std::vector<unsigned int>().swap(nodal_cell_dofs);
+      std::vector<double>().swap(nodal_cell_volume);
+      std::vector<unsigned int>().swap(nodal_cell_index);
+      patch_volume.reinit(0);
+      nodal_partitioner.reset();
+      nodal_dofs.clear();
+    }
+
+    void write_fields(const SimulationState<dim> &s)
+    {
       const auto  *mechanical = s.physics.mechanics();
       const auto  *thermal    = s.physics.heat();
       if (mechanical && this->schedule.raw_vtu())

@@ -34,6 +34,8 @@ namespace anvil
 
     /// Output/VTU encoding = raw: arrays appended raw (vtu_writer.h), else deal.II's zlib.
     bool raw_vtu() const { return raw; }
+    /// Output/Field interval = 1: a write at every step.
+    bool every_step() const { return interval == 1; }
 
     void save(const std::string &key, std::map<std::string, std::string> &entries) const;
     void load(const std::string &key, const std::map<std::string, std::string> &entries);
