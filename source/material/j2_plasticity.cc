@@ -67,8 +67,6 @@ namespace anvil
           rotated.trial[2] = A22 * R[2][2];
           rotated.trial[3] = A00 * R[1][0] + A01 * R[1][1];
           rotated.trial[4] = rotated.trial[5] = 0;
-          rotated.lower[0]                    = A10 * R[0][0] + A11 * R[0][1];
-          rotated.lower[1] = rotated.lower[2] = 0;
           return rotated;
         }
       const double S[3][3] = {{sn[0], sn[3], sn[4]}, {sn[3], sn[1], sn[5]}, {sn[4], sn[5], sn[2]}};
@@ -82,10 +80,6 @@ namespace anvil
       for (unsigned int c = 0; c < 6; ++c)
         rotated.trial[c] = A[row[c]][0] * R[col[c]][0] + A[row[c]][1] * R[col[c]][1] +
                            A[row[c]][2] * R[col[c]][2];
-      #pragma GCC unroll 6
-      for (unsigned int c = 3; c < 6; ++c)
-        rotated.lower[c - 3] = A[col[c]][0] * R[row[c]][0] + A[col[c]][1] * R[row[c]][1] +
-                               A[col[c]][2] * R[row[c]][2];
       return rotated;
     }
 
@@ -106,9 +100,6 @@ namespace anvil
     {
       response.volume_ratio_sensitivity = SymmetricTensor<2, 3>();
       Rotated rotated = rotate(increment.rotation_increment);
-      // First: the rotated σₙ's lower entries are not kept alive (on the stack)
-      // through the return map.
-      keep_for_audit(increment, rotated);
       Trial t;
       evaluate<simple>(increment, increment.temperature, increment.temperature_increment, rotated,
                        false, t);
@@ -182,7 +173,6 @@ namespace anvil
             throw MaterialPointError("the adiabatic temperature change did not converge");
         }
       finish(increment, inner, true, t, response);
-      keep_for_audit(increment, rotated);
       response.adiabatic_temperature_increment = x1;
       state.guess                              = x1;
       if (tangent)
@@ -223,20 +213,6 @@ namespace anvil
 
   } // namespace j2
 
-
-  void J2Model::last_step(const MaterialPoint                &point,
-                          const SymmetricTensor<2, 3>       *&mean_stress,
-                          const SymmetricTensor<2, 3>       *&strain_increment) const
-  {
-    // Every point of a J2Model is a J2Point (create_point(s)).
-    const auto &p = static_cast<const j2::J2Point &>(point);
-    // σ̄ once per step here, not at every update; in this thread's scratch
-    // (valid until its next call: the audit reads it at once).
-    thread_local SymmetricTensor<2, 3> mean;
-    p.audit_mean_stress(mean);
-    mean_stress      = &mean;
-    strain_increment = &p.audit_strain;
-  }
 
   void J2Model::prepare_kernel() const
   {

@@ -9,7 +9,7 @@
 // evaluate() and finish() are inline in update_isothermal() and
 // update_adiabatic() (their only callers): the trial state is not passed
 // through call frames (J2 bench, 3D plastic, stress + tangent: 654 → 556
-// instructions per update with keep_for_audit()). Trial carries one return
+// instructions per update). Trial carries one return
 // map from evaluate() to finish(); it stays in registers only if no call gets
 // the address of one of its fields and every loop over its arrays is unrolled
 // before GCC's scalar replacement (-O2 unrolls after it without
@@ -84,10 +84,8 @@ namespace anvil
       }
 
     private:
-      /// σ̃ₙ = ΔR σₙ ΔRᵀ (raw): an update's return maps share it; and its
-      /// entries below the diagonal, (1,0), (2,0), (2,1), as computed (the
-      /// audit's mean stress symmetrises the two, last_step()).
-      struct Rotated { double trial[6], lower[3]; };
+      /// σ̃ₙ = ΔR σₙ ΔRᵀ (raw): an update's return maps share it.
+      struct Rotated { double trial[6]; };
       Rotated rotate(const Tensor<2, 3> &R) const;
 
       /// One return map at temperature T: what finish() turns into the
@@ -151,38 +149,6 @@ namespace anvil
           }
         return k.inline_yield ? k.yield.evaluate(eps, T) : model.hardening->evaluate(eps, T);
       }
-      /// σ̃ₙ (shears symmetrised) and Δε of this update, for the audit's
-      /// σ̄ = ½(σ̃ₙ + σ) (audit_mean_stress()): only what an update must keep, σ̄
-      /// itself once per step, at commit.
-      [[gnu::always_inline]] void keep_for_audit(const MaterialIncrement &inc, const Rotated &rotated)
-      {
-        double *r = audit_rotated.begin_raw();
-        #pragma GCC unroll 6
-        for (unsigned int c = 0; c < 3; ++c)
-          r[c] = rotated.trial[c];
-        #pragma GCC unroll 6
-        for (unsigned int c = 3; c < 6; ++c)
-          r[c] = (rotated.trial[c] + rotated.lower[c - 3]) * 0.5;
-        audit_strain = inc.strain_increment;
-      }
-
-    public:
-      /// σ̄ = ½(σ̃ₙ + σ) of the last update in @p mean (J2Model::last_step()):
-      /// the operations of the audit's mean_stress(), entry for entry.
-      void audit_mean_stress(SymmetricTensor<2, 3> &mean) const
-      {
-        const double *r = audit_rotated.begin_raw(), *s = current.begin_raw();
-        double       *m = mean.begin_raw();
-        #pragma GCC unroll 6
-        for (unsigned int c = 0; c < 6; ++c)
-          m[c] = 0.5 * (r[c] + s[c]);
-      }
-      SymmetricTensor<2, 3> audit_strain; // keep_for_audit()
-
-    private:
-      SymmetricTensor<2, 3> audit_rotated; // keep_for_audit()
-
-    private:
       static double equivalent_stress(const SymmetricTensor<2, 3> &sigma)
       {
         return std::sqrt(1.5) * deviator(sigma).norm();
@@ -206,8 +172,8 @@ namespace anvil
 
     protected:
       /// What only the adiabatic update keeps (112 B): a J2AdiabaticPoint
-      /// carries it inline, so the points of the other scenes do not (232 B
-      /// against 344 B), and those of an adiabatic scene are not a heap
+      /// carries it inline, so the points of the other scenes do not (136 B
+      /// against 248 B; 232 and 344 before session 21 left the energy audit its own kinematics), and those of an adiabatic scene are not a heap
       /// object each (session 19 made it on a point's first adiabatic update).
       struct AdiabaticState
       {

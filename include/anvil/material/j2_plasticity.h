@@ -177,18 +177,6 @@ namespace anvil
     /// Valid once a point exists (create_point(s) prepares it).
     const Kernel &kernel() const { return kernel_cache; }
 
-    /**
-     * The energy audit's view of the last update of @p point (a point of this
-     * model): the step's mean stress σ̄ = ½(ΔR σₙ ΔRᵀ + σ), symmetrised with
-     * the operations of the audit's own (material_point_update.cc), and the
-     * strain increment Δε. Every update keeps them (12 numbers per point), so
-     * the audit at commit needs neither ΔR nor the material's kinematics.
-     */
-    bool keeps_last_step() const override { return true; }
-    void last_step(const MaterialPoint                  &point,
-                   const dealii::SymmetricTensor<2, 3> *&mean_stress,
-                   const dealii::SymmetricTensor<2, 3> *&strain_increment) const override;
-
   private:
     void                                        prepare_kernel() const;
     mutable std::once_flag                      kernel_once;
