@@ -216,9 +216,12 @@ namespace anvil
     owned_solution           = owned_old_solution;
     solution                 = owned_solution;
     old_solution             = owned_solution;
-    velocity_old_ghosted     = velocity_old;
-    velocity_ghosted         = velocity_old;
-    acceleration_old_ghosted = acceleration_old;
+    if (parameters.dynamic)
+      {
+        velocity_old_ghosted     = velocity_old;
+        velocity_ghosted         = velocity_old;
+        acceleration_old_ghosted = acceleration_old;
+      }
   }
 
   template <int dim>

@@ -249,11 +249,12 @@ namespace anvil
       const ReferenceCellValues    &ref         = scratch.cell;
       const bool              heat        = context.has_temperature_field();
       // F_n and F̄_n: kept per cell for the step (StepStart), computed by the
-      // cell's first update of a step (the same operations: the same bits).
+      // cell's first update of a step (the same operations: the same bits);
+      // at every update where the table is empty (3D: point_setup.cc).
       const std::vector<double> &u_old = scratch.local_u_old;
       PointStart                *kept  = nullptr;
       bool                       have_start = false;
-      if (context.step_start)
+      if (context.step_start && !context.step_start->points.empty())
         {
           const auto key = context.step_start->u_old[cell];
           kept           = context.step_start->points[cell].data();
@@ -372,7 +373,7 @@ namespace anvil
       if (formulation.f_bar && !kept_step)
         f_bar.evaluate_centre(scratch);
       const PointStart *kept = nullptr;
-      if (context.step_start)
+      if (context.step_start && !context.step_start->points.empty())
         {
           const auto key = context.step_start->u_old[cell];
           if (std::memcmp(key.data(), scratch.local_u_old.data(), key.size() * sizeof(double)) == 0)

@@ -226,9 +226,12 @@ namespace anvil
     mean = internal_force;
     mean += internal_force_old;
     energy_audit.internal_work += 0.5 * (mean * du);
-    mean = contact_force;
-    mean += contact_force_old;
-    energy_audit.contact_work += 0.5 * (mean * du);
+    if (contact) // (without, f_c is zero: the work's sum stays +0)
+      {
+        mean = contact_force;
+        mean += contact_force_old;
+        energy_audit.contact_work += 0.5 * (mean * du);
+      }
     compute_step_audit();
     if (audit_omission)
       step_audit[audit_omission - 1] = 0; // a test-only injected error (ANVIL_AUDIT_OMIT)
@@ -269,7 +272,8 @@ namespace anvil
     internal_force_old = internal_force;
     external_force_old = external_force;
     reaction_force_old = reaction_force;
-    contact_force_old = contact_force;
+    if (contact)
+      contact_force_old = contact_force;
   }
 
   template <int dim>
