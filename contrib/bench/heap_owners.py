@@ -7,10 +7,12 @@ Each stack goes to the first owner whose keys it contains (doc/memory.md).
 """
 import sys, collections
 rules = [
+ ("checkpoint: deal.II's packed blocks (cells' pieces + process buffer)", ["pack_data", "save_attached_data"]),
  ("ML: Galerkin products (ML_rap: A·P and Pᵀ(AP))", ["ML_rap"]),
  ("ML: prolongator, aggregates, other", ["ML_", "MultiLevelPreconditioner", "Amesos", "Ifpack"]),
  ("near-null space (rigid-body modes)", ["rigid_body_modes", "as_multivector"]),
  ("Krylov (GMRES basis)", ["SolverGMRES", "GrowingVectorMemory"]),
+ ("geometric coarse space (P, K·P, A_c)", ["make_coarse_space", "galerkin_product", "TwoLevelPreconditioner", "inject"]),
  ("J2 point states (one block)", ["contiguous_points", "create_points"]),
  ("step-start table (F_n, F̄_n, u_n key)", ["PointStart", "StepStart"]),
  ("per-point doubles (heat sources, T, Ẇ)", ["PointData<>::reinit", "PointData<>::operator="]),

@@ -173,7 +173,8 @@ namespace anvil
     protected:
       /// What only the adiabatic update keeps (112 B): a J2AdiabaticPoint
       /// carries it inline, so the points of the other scenes do not (136 B
-      /// against 248 B; 232 and 344 before session 21 left the energy audit its own kinematics), and those of an adiabatic scene are not a heap
+      /// against 248 B; 232 and 344 before session 21 left the energy audit
+      /// its own kinematics), and those of an adiabatic scene are not a heap
       /// object each (session 19 made it on a point's first adiabatic update).
       struct AdiabaticState
       {
