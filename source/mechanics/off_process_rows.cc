@@ -171,12 +171,31 @@ namespace anvil
           const int *const own = mapping.owned_vector_indices(copy.cell_index, n_dofs);
           if (matrix)
             {
+              // Owned rows by local row and column numbers (the cache
+              // CellScatter::add_by_local_indices keeps): no global look-up
+              // per entry (SumIntoGlobalValues: 157 M instructions on the
+              // 3D 16³ block's interface per rank, 13 assemblies).
+              int *const local_rows = mapping.local_indices(copy.cell_index, n_dofs);
+              int *const local_cols = local_rows + n_dofs;
+              if (local_rows[0] == -2)
+                for (unsigned int i = 0; i < n_dofs; ++i)
+                  {
+                    const int g   = static_cast<int>(copy.dof_indices[i]);
+                    local_rows[i] = matrix->LRID(g);
+                    local_cols[i] = matrix->LCID(g);
+                  }
               const Index *const dofs = copy.dof_indices.data();
               for (unsigned int i = 0; i < n_dofs; ++i)
-                if (own[i] >= 0)
-                  add_owned(own[i], dofs[i], n_dofs, dofs, &copy.matrix(i, 0));
-                else
+                if (own[i] < 0)
                   add_remote(dofs[i], n_dofs, dofs, &copy.matrix(i, 0));
+                else
+                  {
+                    AssertThrow(local_rows[i] >= 0, ExcInternalError());
+                    const int ierr =
+                      matrix->SumIntoMyValues(local_rows[i], static_cast<int>(n_dofs), &copy.matrix(i, 0), local_cols);
+                    AssertThrow(ierr == 0, ExcMessage("OffProcessRows: an entry outside the matrix's "
+                                                      "pattern (" + std::to_string(ierr) + ")"));
+                  }
             }
           add_vector(0, copy.rhs);
         }
