@@ -14,6 +14,10 @@
 #include <anvil/mechanics/cell_scatter.h>
 #include <anvil/mechanics/mechanical_problem.h>
 
+#include "off_process_rows.h"
+
+#include <Epetra_CrsMatrix.h>
+
 #include <algorithm>
 #include <chrono>
 #include <memory>
@@ -88,6 +92,33 @@ namespace anvil
       const Epetra_BlockMap      &map;
       const double *const         u, *const u_old, *const v_old, *const a_old;
     };
+
+    // OffProcessRows where the assembly can do without deal.II's compress:
+    // several processes, no contact (its elements add through deal.II),
+    // contiguous ownership, the vectors on the right-hand side's layout;
+    // decided alike on every process (the exchange is collective).
+    template <int dim>
+    std::unique_ptr<OffProcessRows<dim>>
+    make_off_process_rows(const AssemblyMapping<dim> &mapping, const AffineConstraints<double> &constraints,
+                          TrilinosWrappers::SparseMatrix *matrix,
+                          const std::array<TrilinosWrappers::MPI::Vector *, 4> &v, const IndexSet &owned,
+                          const unsigned int n_dofs, const bool dynamic, const bool contact,
+                          const MPI_Comm comm)
+    {
+      if (Utilities::MPI::n_mpi_processes(comm) == 1 || contact)
+        return nullptr;
+      const Epetra_BlockMap  &map = v[0]->trilinos_vector().Map();
+      std::array<double *, 4> values;
+      for (unsigned int k = 0; k < 4; ++k)
+        values[k] = same_local_map(v[k]->trilinos_vector().Map(), map) ? v[k]->trilinos_vector()[0] : nullptr;
+      const bool ok = owned.is_contiguous() && values[0] && values[1] && values[2] && (!dynamic || values[3]);
+      if (Utilities::MPI::min(ok ? 1 : 0, comm) == 0)
+        return nullptr;
+      return std::make_unique<OffProcessRows<dim>>(
+        mapping, constraints,
+        matrix ? const_cast<Epetra_CrsMatrix *>(&matrix->trilinos_matrix()) : nullptr, values, map,
+        n_dofs, dynamic, comm);
+    }
   } // namespace
 
   template <int dim>
@@ -131,7 +162,17 @@ namespace anvil
     TimerOutput::Scope t(timer, with_matrix ? "Mechanics: assembly" : "Mechanics: residual");
     const auto start = std::chrono::steady_clock::now();
 
-    if (with_matrix)
+    // Several processes and no contact: the cells with rows owned elsewhere
+    // (or constrained) add through OffProcessRows, the rest by CellScatter's
+    // raw paths, so that nothing enters the matrix through deal.II and it
+    // needs no compress() (nor the one deal.II's operator=(0) makes).
+    const std::unique_ptr<OffProcessRows<dim>> off_process = make_off_process_rows(
+      *assembly_mapping, *active_constraints, with_matrix ? &system_matrix : nullptr,
+      {{&system_rhs, &internal_force, &external_force, &inertia_force}}, locally_owned_dofs,
+      fe.n_dofs_per_cell(), parameters.dynamic, static_cast<bool>(contact), mpi_communicator);
+    if (with_matrix && off_process)
+      const_cast<Epetra_CrsMatrix &>(system_matrix.trilinos_matrix()).PutScalar(0.);
+    else if (with_matrix)
       system_matrix = 0;
     system_rhs     = 0;
     internal_force = 0;
@@ -219,7 +260,10 @@ namespace anvil
           return;
         }
       max_plastic_increment = std::max(max_plastic_increment, copy.max_plastic_increment);
-      scatter.add(copy);
+      if (off_process && off_process->takes(copy))
+        off_process->add(copy);
+      else
+        scatter.add(copy);
     };
 
     const UpdateFlags flags =
@@ -259,8 +303,12 @@ namespace anvil
         return assemble(with_matrix, time);
       }
 
-    if (with_matrix)
+    if (off_process)
+      off_process->exchange();
+    else if (with_matrix)
       system_matrix.compress(VectorOperation::add);
+    // Nothing owned elsewhere is left in the vectors: their compress() only
+    // resets deal.II's record of the last operation (a few collectives).
     system_rhs.compress(VectorOperation::add);
     internal_force.compress(VectorOperation::add);
     external_force.compress(VectorOperation::add);
