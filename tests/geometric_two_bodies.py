@@ -1,6 +1,7 @@
 """The geometric coarse space from the mesh hierarchy (source/mechanics/
 coarse_space_prolongation.cc) on two J2 bodies meshed as blocks refined once
-(tests/geometric_two_bodies.prm), 2D and 3D: GMRES to 1e-10 reaches the
+(tests/geometric_two_bodies.prm), 2D and 3D, and on a curved 3D tube refined once
+(tests/geometric_tube.prm): GMRES to 1e-10 reaches the
 direct solver's (KLU) answer, every reaction and energy column to 1e-6 of its
 scale; two processes (space-filling curve and per body) give np 1's answer;
 and the same two blocks unrefined are refused with one line naming
@@ -17,12 +18,14 @@ THREE_D = ["Dimension=3",
            "b.bottom: ux = 0, uy = 0, uz = 0; b.top: ux = 0.003*t, uy = -0.006*t, uz = 0.002*t"]
 DIRECT = ["Mechanics/Linear solver/Type=direct"]
 PER_BODY = ["Geometry/Partition=per body"]
-for label, dim_sets, runs in [("2D", [], [("direct", DIRECT, 1), ("geometric", [], 1), ("np2", [], 2),
-                                          ("np2_per_body", PER_BODY, 2)]),
-                              ("3D", THREE_D, [("direct", DIRECT, 1), ("geometric", [], 1), ("np2", [], 2)])]:
+for label, scene, dim_sets, runs in [
+        ("2D", SCENE, [], [("direct", DIRECT, 1), ("geometric", [], 1), ("np2", [], 2), ("np2_per_body", PER_BODY, 2)]),
+        ("3D", SCENE, THREE_D, [("direct", DIRECT, 1), ("geometric", [], 1), ("np2", [], 2)]),
+        ("3D tube", "tests/geometric_tube.prm", [], [("direct", DIRECT, 1), ("geometric", [], 1), ("np2", [], 2)])]:
     out, per_solve = {}, {}
     for name, extra, np in runs:
-        out[name], s, _ = run(SCENE, dim_sets + extra, np=np, name="geometric_two_bodies_%s_%s" % (label, name))
+        out[name], s, _ = run(scene, dim_sets + extra, np=np,
+                              name="geometric_two_bodies_%s_%s" % (label.replace(" ", "_"), name))
         check(s["status"] == "completed" and s["steps"] == 4, "%s %s: completed in 4 steps" % (label, name))
         per_solve[name] = s["linear_iterations"] / max(1, s["newton_iterations"])
     check(per_solve["geometric"] > 1, "%s: %.1f Krylov iterations per solve" % (label, per_solve["geometric"]))
