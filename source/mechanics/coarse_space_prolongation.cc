@@ -292,9 +292,10 @@ namespace anvil
       nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
       const unsigned int n_mine = nodes.size();
       unsigned int       first  = 0;
-      AssertThrowMPI(MPI_Exscan(&n_mine, &first, 1, MPI_UNSIGNED, MPI_SUM, comm));
+      const int          ierr   = MPI_Exscan(&n_mine, &first, 1, MPI_UNSIGNED, MPI_SUM, comm);
+      AssertThrowMPI(ierr);
       if (Utilities::MPI::this_mpi_process(comm) == 0)
-        first = 0;
+        first = 0; // MPI_Exscan leaves rank 0's undefined
 
       CoarseSpace space;
       space.n_coarse_dofs = Utilities::MPI::sum(n_mine, comm);
@@ -308,15 +309,16 @@ namespace anvil
 
       // Each fine dof's coarse dof k where it sits on a parent vertex: k free,
       // −k − 2 constrained, −1 elsewhere (exact in double); ghosts included.
-      TrilinosWrappers::MPI::Vector id(owned, comm);
-      id = -1.;
-      for (unsigned int i = 0; i < n_mine; ++i)
-        id[nodes[i]] = constraints.is_constrained(nodes[i]) ? -double(first + i) - 2 : double(first + i);
-      id.compress(VectorOperation::insert);
-      nodes = std::vector<types::global_dof_index>();
       TrilinosWrappers::MPI::Vector coarse_id(owned, DoFTools::extract_locally_relevant_dofs(dof_handler), comm);
-      coarse_id = id;
-      id.reinit(IndexSet(0), comm);
+      {
+        TrilinosWrappers::MPI::Vector id(owned, comm);
+        id = -1.;
+        for (unsigned int i = 0; i < n_mine; ++i)
+          id[nodes[i]] = constraints.is_constrained(nodes[i]) ? -double(first + i) - 2 : double(first + i);
+        id.compress(VectorOperation::insert);
+        coarse_id = id;
+      }
+      nodes = std::vector<types::global_dof_index>();
 
       const unsigned int                   n = fe.n_dofs_per_cell();
       std::vector<types::global_dof_index> dofs(n);
