@@ -19,7 +19,7 @@ Cases:
 
 Usage: solver_scaling.py BUILD_DIR OUT_DIR [--small] [--large] [--cases 2d,3d,strip]
        [--solvers iterative,direct] [--sizes '2d:64,128;3d:10'] [--np 2] [--partition 'per body']
-       [--package ML|MueLu] [--preconditioner AMG|geometric] [--tag NAME] [--set ENTRY=VALUE ...]
+       [--package ML|MueLu] [--preconditioner AMG|geometric] [--refined] [--tag NAME] [--set ENTRY=VALUE ...]
 
 --partition sets Geometry/Partition (default: the scene's, p4est's space-filling
 curve); 'per body' cuts every body in np slabs, so that the strip's contact
@@ -49,8 +49,11 @@ the isochoric modes with Chebyshev 6 over [lambda_max/100, lambda_max]; --set
 'Mechanics/Linear solver/AMG isochoric modes=false' gives the earlier default.
 
 --preconditioner geometric sets Mechanics/Linear solver/Preconditioner (the two-level
-preconditioner on the geometric coarse space, one block with even subdivisions:
-doc/linear_solver.md, session 20); its runs are named ..._geometric.
+preconditioner on the geometric coarse space: doc/linear_solver.md, sessions 20
+and 21); its runs are named ..._geometric. --refined meshes the 2d/3d blocks as
+n/2 subdivisions refined once (Geometry/Global refinements = 1: the same fine
+mesh, p4est's partition of the coarse cells, the coarse space from the mesh
+hierarchy); its runs are named ..._refined.
 
 --set passes an entry to every run (e.g. 'Mechanics/Linear solver/AMG rebuild
 growth=0' for the hierarchy built at every solve, as before session 8).
@@ -70,7 +73,19 @@ J2 = ["Mechanics/Element=F-bar", "Bodies/body/Material/Model=J2",
 DIRECT_LIMIT = {"2d": 256, "3d": 12, "strip": 100000}
 
 
+REFINED = False  # --refined: the 2d/3d blocks as n/2 subdivisions refined once (the same fine mesh)
+
+
 def case_sets(case, n):
+    if REFINED and case in ("2d", "3d"):
+        if n % 2:
+            sys.exit("--refined needs even sizes")
+        scene, sets = case_sets_unrefined(case, n // 2)
+        return scene, sets + ["Geometry/Global refinements=1"]
+    return case_sets_unrefined(case, n)
+
+
+def case_sets_unrefined(case, n):
     if case == "2d":
         return "contrib/bench/elastic_block.prm", ["Dimension=2", "Geometry/Blocks=body: 0, 0, 1, 1, %d, %d" % (n, n)] + J2
     if case == "3d":
@@ -164,6 +179,10 @@ def main():
             tag = args[i + 1]
         if a == "--preconditioner":
             preconditioner = args[i + 1]
+    global REFINED
+    REFINED = "--refined" in args
+    if REFINED:
+        tag = "_".join(t for t in (tag, "refined") if t)
     if preconditioner != "AMG":
         extra.append("Mechanics/Linear solver/Preconditioner=" + preconditioner)
         tag = "_".join(t for t in (preconditioner, tag) if t)

@@ -1,6 +1,7 @@
 // The two-level (geometric coarse space) preconditioner of the displacement
 // system: geometric_coarse_space.h.
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
 #include <deal.II/fe/fe.h>
 #include <deal.II/lac/solver_control.h>
@@ -16,6 +17,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <iostream>
 
@@ -37,210 +39,6 @@ namespace anvil
   CoarseSpace::CoarseSpace()              = default;
   CoarseSpace::CoarseSpace(CoarseSpace &&) = default;
   CoarseSpace::~CoarseSpace()             = default;
-
-  namespace
-  {
-    /// The fine mesh as one box of equal cells: lower corner, cell size, cells per direction.
-    template <int dim>
-    struct Box
-    {
-      std::array<double, dim>       lower, h;
-      std::array<unsigned int, dim> cells;
-      /// The grid index of @p x in direction d.
-      unsigned int index(const Point<dim> &x, const unsigned int d) const
-      {
-        return static_cast<unsigned int>(std::lround((x[d] - lower[d]) / h[d]));
-      }
-    };
-
-    template <int dim>
-    Box<dim> find_box(const DoFHandler<dim> &dof_handler)
-    {
-      const MPI_Comm comm = dof_handler.get_communicator();
-      const char    *what = "Mechanics/Linear solver/Preconditioner = geometric needs one axis-parallel block "
-                            "of equal cells with even subdivisions (Geometry/Blocks)";
-      std::array<double, dim> lower, upper, h;
-      lower.fill(std::numeric_limits<double>::max());
-      upper.fill(-std::numeric_limits<double>::max());
-      h.fill(std::numeric_limits<double>::max());
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
-          for (unsigned int d = 0; d < dim; ++d)
-            {
-              double a = std::numeric_limits<double>::max(), b = -a;
-              for (const unsigned int v : cell->vertex_indices())
-                {
-                  a = std::min(a, cell->vertex(v)[d]);
-                  b = std::max(b, cell->vertex(v)[d]);
-                }
-              lower[d] = std::min(lower[d], a);
-              upper[d] = std::max(upper[d], b);
-              h[d]     = std::min(h[d], b - a);
-            }
-      Box<dim>      box;
-      std::size_t   cells    = 1;
-      int           off_grid = 0;
-      for (unsigned int d = 0; d < dim; ++d)
-        {
-          box.lower[d] = Utilities::MPI::min(lower[d], comm);
-          box.h[d]     = Utilities::MPI::min(h[d], comm);
-          const double length = Utilities::MPI::max(upper[d], comm) - box.lower[d];
-          box.cells[d]        = static_cast<unsigned int>(std::lround(length / box.h[d]));
-          if (box.cells[d] % 2 != 0 || std::abs(box.cells[d] * box.h[d] - length) > 1e-8 * length)
-            off_grid = 1;
-          cells *= box.cells[d];
-        }
-      if (cells != dof_handler.get_triangulation().n_global_active_cells())
-        off_grid = 1;
-      for (const auto &cell : dof_handler.active_cell_iterators())
-        if (cell->is_locally_owned())
-          for (const unsigned int v : cell->vertex_indices())
-            for (unsigned int d = 0; d < dim; ++d)
-              if (std::abs(cell->vertex(v)[d] - box.lower[d] - box.index(cell->vertex(v), d) * box.h[d]) >
-                  1e-8 * box.h[d])
-                off_grid = 1;
-      if (Utilities::MPI::max(off_grid, comm) != 0)
-        throw InputError(what);
-      return box;
-    }
-  } // namespace
-
-  template <int dim>
-  void check_geometric_coarse_space(const DoFHandler<dim> &dof_handler)
-  {
-    if (dof_handler.get_fe().degree != 1 || dof_handler.get_fe().n_components() != dim)
-      throw InputError("Mechanics/Linear solver/Preconditioner = geometric: Q1 elements only (Polynomial degree = 1)");
-    find_box(dof_handler);
-  }
-
-  template <int dim>
-  CoarseSpace make_coarse_space(const DoFHandler<dim>                &dof_handler,
-                                const AffineConstraints<double>      &constraints,
-                                const TrilinosWrappers::SparseMatrix &K)
-  {
-    check_geometric_coarse_space(dof_handler);
-    const MPI_Comm          comm = dof_handler.get_communicator();
-    const Box<dim>          box  = find_box(dof_handler);
-    const Epetra_CrsMatrix &A    = K.trilinos_matrix();
-    const Epetra_Map       &rows = A.RowMap();
-
-    // Coarse node (I_1, …, I_dim), lexicographic.
-    std::array<unsigned int, dim> stride;
-    unsigned int                  nodes = 1;
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        stride[d] = nodes;
-        nodes *= box.cells[d] / 2 + 1;
-      }
-    CoarseSpace space;
-    space.n_coarse_dofs = dim * nodes;
-    const unsigned int p = Utilities::MPI::this_mpi_process(comm), np = Utilities::MPI::n_mpi_processes(comm);
-    const unsigned int first = dim * (std::size_t(nodes) * p / np), last = dim * (std::size_t(nodes) * (p + 1) / np);
-    std::vector<int>   gids(last - first);
-    for (unsigned int k = 0; k < gids.size(); ++k)
-      gids[k] = first + k;
-    space.coarse_map = std::make_unique<Epetra_Map>(static_cast<int>(space.n_coarse_dofs), static_cast<int>(gids.size()),
-                                                    gids.data(), 0, A.Comm());
-
-    // Every owned fine dof once: its grid index and component.
-    struct FineDof
-    {
-      int                           row;
-      unsigned int                  component;
-      std::array<unsigned int, dim> index;
-      bool                          constrained;
-    };
-    std::vector<FineDof> fine;
-    fine.reserve(rows.NumMyElements());
-    std::vector<bool> seen(rows.NumMyElements(), false);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const unsigned int v : cell->vertex_indices())
-          for (unsigned int c = 0; c < dim; ++c)
-            {
-              const types::global_dof_index dof = cell->vertex_dof_index(v, c);
-              const int                     row = rows.LID(static_cast<int>(dof));
-              if (row < 0 || seen[row])
-                continue;
-              seen[row] = true;
-              FineDof f{row, c, {}, constraints.is_constrained(dof)};
-              for (unsigned int d = 0; d < dim; ++d)
-                f.index[d] = box.index(cell->vertex(v), d);
-              fine.push_back(f);
-            }
-    const auto on_coarse_node = [](const FineDof &f) {
-      return std::all_of(f.index.begin(), f.index.end(), [](const unsigned int i) { return i % 2 == 0; });
-    };
-    const auto coarse_dof = [&](const std::array<unsigned int, dim> &I, const unsigned int c) {
-      unsigned int node = 0;
-      for (unsigned int d = 0; d < dim; ++d)
-        node += I[d] * stride[d];
-      return static_cast<int>(dim * node + c);
-    };
-    // A coarse dof is constrained where the fine dof at its node is (all processes).
-    std::vector<int> constrained(space.n_coarse_dofs, 0);
-    for (const FineDof &f : fine)
-      if (on_coarse_node(f))
-        {
-          std::array<unsigned int, dim> I;
-          for (unsigned int d = 0; d < dim; ++d)
-            I[d] = f.index[d] / 2;
-          const int k = coarse_dof(I, f.component);
-          constrained[k] = f.constrained ? 1 : 0;
-          space.injection.emplace_back(f.row, k);
-        }
-    Utilities::MPI::max(constrained, comm, constrained);
-
-    space.P = std::make_unique<Epetra_CrsMatrix>(Copy, rows, 1 << dim);
-    std::vector<int>    columns;
-    std::vector<double> values;
-    for (const FineDof &f : fine)
-      {
-        columns.clear();
-        values.clear();
-        if (f.constrained)
-          {
-            if (on_coarse_node(f))
-              {
-                std::array<unsigned int, dim> I;
-                for (unsigned int d = 0; d < dim; ++d)
-                  I[d] = f.index[d] / 2;
-                columns.push_back(coarse_dof(I, f.component));
-                values.push_back(1.);
-              }
-          }
-        else
-          // The tensor product of the 1D weights: 1 at an even index, 1/2 at
-          // the two coarse neighbours of an odd one.
-          for (unsigned int corner = 0; corner < (1u << dim); ++corner)
-            {
-              std::array<unsigned int, dim> I;
-              double                        w = 1;
-              for (unsigned int d = 0; d < dim && w > 0; ++d)
-                {
-                  const unsigned int i = f.index[d], up = (corner >> d) & 1;
-                  if (i % 2 == 0)
-                    w *= up ? 0. : 1.;
-                  else
-                    w *= 0.5;
-                  I[d] = i / 2 + up;
-                }
-              if (w == 0)
-                continue;
-              const int k = coarse_dof(I, f.component);
-              if (constrained[k])
-                continue;
-              columns.push_back(k);
-              values.push_back(w);
-            }
-        if (!columns.empty())
-          AssertThrow(space.P->InsertGlobalValues(rows.GID(f.row), columns.size(), values.data(), columns.data()) == 0,
-                      ExcMessage("geometric coarse space: P's insertion failed"));
-      }
-    AssertThrow(space.P->FillComplete(*space.coarse_map, A.RangeMap()) == 0,
-                ExcMessage("geometric coarse space: P's FillComplete failed"));
-    return space;
-  }
 
   std::unique_ptr<Epetra_CrsMatrix> galerkin_product(const Epetra_CrsMatrix &K, const CoarseSpace &space)
   {
@@ -282,19 +80,19 @@ namespace anvil
   }
 
   TwoLevelPreconditioner::TwoLevelPreconditioner(const TrilinosWrappers::SparseMatrix &K_,
-                                                 CoarseSpace                         &&space_,
-                                                 const std::vector<std::vector<double>> &fine_modes,
+                                                 const CoarseSpace                    &space_,
+                                                 const std::vector<std::vector<double>> &coarse_modes,
                                                  const IterativeSolverSettings        &coarse_settings,
                                                  const unsigned int                    degree,
                                                  const double                          ratio)
-    : space(std::move(space_))
+    : space(space_)
     , K(K_.trilinos_matrix())
   {
     {
       const std::unique_ptr<Epetra_CrsMatrix> Ac = galerkin_product(K, space);
       coarse_matrix.reinit(*Ac, true);
     }
-    coarse_amg = build_amg(coarse_matrix, inject(space, fine_modes, K), coarse_settings);
+    coarse_amg = build_amg(coarse_matrix, coarse_modes, coarse_settings);
 
     Epetra_Vector inverse_diagonal(K.RowMap());
     K.ExtractDiagonalCopy(inverse_diagonal);
@@ -339,6 +137,72 @@ namespace anvil
     y.Update(1., *t, 1.);
   }
 
+  namespace
+  {
+    /**
+     * P and the injected coarse modes kept across solves while the mesh, the
+     * DoF numbering and the Dirichlet set do not change (contact and
+     * plasticity change K, not P): dropped when the triangulation changes or
+     * goes, rebuilt when the owned constrained dofs or K's rows differ. The
+     * modes are those of the configuration of the solve that injected them
+     * (near-null only for the coarse ML), kept per mode set (rigid/isochoric).
+     */
+    struct KeptSpace
+    {
+      const void                        *dof_handler = nullptr;
+      std::uint64_t                      constrained = 0;
+      std::unique_ptr<CoarseSpace>       space;
+      int                                mode_set = -1;
+      std::vector<std::vector<double>>   coarse_modes;
+      boost::signals2::scoped_connection change, clear;
+      void                               drop()
+      {
+        space.reset();
+        coarse_modes = std::vector<std::vector<double>>();
+        mode_set     = -1;
+        dof_handler  = nullptr;
+      }
+    };
+
+    KeptSpace &kept_space()
+    {
+      static KeptSpace kept;
+      return kept;
+    }
+
+    /// The owned constrained dofs (a hash, the same on every process).
+    std::uint64_t constrained_signature(const AffineConstraints<double> &constraints, const IndexSet &owned,
+                                        const MPI_Comm comm)
+    {
+      std::uint64_t h = 0;
+      for (const auto &line : constraints.get_lines())
+        if (owned.is_element(line.index))
+          {
+            std::uint64_t z = line.index + 0x9e3779b97f4a7c15ull; // splitmix64
+            z               = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+            z               = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+            h += z ^ (z >> 31);
+          }
+      return Utilities::MPI::sum(h, comm);
+    }
+
+    /// The kept P valid for this solve (all processes agree).
+    template <int dim>
+    bool kept_is_valid(const KeptSpace &kept, const DoFHandler<dim> &dof_handler, const std::uint64_t constrained,
+                       const Epetra_Map &rows)
+    {
+      int same = kept.space && kept.dof_handler == &dof_handler && kept.constrained == constrained;
+      if (same)
+        {
+          const Epetra_Map &mine = kept.space->P->RangeMap();
+          same = mine.NumMyElements() == rows.NumMyElements() &&
+                 std::equal(mine.MyGlobalElements(), mine.MyGlobalElements() + mine.NumMyElements(),
+                            rows.MyGlobalElements());
+        }
+      return Utilities::MPI::min(same, dof_handler.get_communicator()) == 1;
+    }
+  } // namespace
+
   template <int dim>
   unsigned int solve_two_level(const TrilinosWrappers::SparseMatrix    &K,
                                TrilinosWrappers::MPI::Vector           &x,
@@ -346,6 +210,7 @@ namespace anvil
                                const DoFHandler<dim>                   &dof_handler,
                                const AffineConstraints<double>         &constraints,
                                const std::function<std::vector<std::vector<double>>()> &fine_modes,
+                               const int                                mode_set,
                                const IterativeSolverSettings           &settings)
   {
     IterativeSolverSettings coarse = settings;
@@ -357,21 +222,52 @@ namespace anvil
       degree = std::max(1, std::atoi(s));
     if (const char *s = std::getenv("ANVIL_GMG_RATIO"))
       ratio = std::atof(s);
-    const TwoLevelPreconditioner preconditioner(K, make_coarse_space(dof_handler, constraints, K), fine_modes(),
-                                                coarse, degree, ratio);
-    // The same GMRES as ML's (stall stop, pool given back).
-    return run_gmres(K, x, b, preconditioner, settings);
+    // Benchmarks: ANVIL_GMG_KEEP=0 builds P and the modes at every solve (session 20).
+    const bool  keep  = !std::getenv("ANVIL_GMG_KEEP") || std::string(std::getenv("ANVIL_GMG_KEEP")) != "0";
+    const bool  log   = std::getenv("ANVIL_GMG_LOG") && Utilities::MPI::this_mpi_process(K.get_mpi_communicator()) == 0;
+    KeptSpace  &kept  = kept_space();
+    Timer       timer;
+    const auto  built = [&](const char *what) {
+      if (log)
+        std::cout << "geometric coarse space: " << what << " in " << timer.cpu_time() << " CPU s" << std::endl;
+    };
+    const std::uint64_t constrained =
+      constrained_signature(constraints, dof_handler.locally_owned_dofs(), dof_handler.get_communicator());
+    if (!keep || !kept_is_valid(kept, dof_handler, constrained, K.trilinos_matrix().RowMap()))
+      {
+        kept.drop();
+        kept.space       = std::make_unique<CoarseSpace>(make_coarse_space(dof_handler, constraints, K));
+        kept.dof_handler = &dof_handler;
+        kept.constrained = constrained;
+        auto &signals    = dof_handler.get_triangulation().signals;
+        kept.change      = signals.any_change.connect([] { kept_space().drop(); });
+        kept.clear       = signals.clear.connect([] { kept_space().drop(); });
+        built("P built");
+      }
+    if (kept.mode_set != mode_set)
+      {
+        timer.restart();
+        kept.coarse_modes = inject(*kept.space, fine_modes(), K.trilinos_matrix());
+        kept.mode_set     = mode_set;
+        built("coarse modes injected");
+      }
+    unsigned int iterations = 0;
+    {
+      const TwoLevelPreconditioner preconditioner(K, *kept.space, kept.coarse_modes, coarse, degree, ratio);
+      // The same GMRES as ML's (stall stop, pool given back).
+      iterations = run_gmres(K, x, b, preconditioner, settings);
+    }
+    if (!keep)
+      kept.drop();
+    return iterations;
   }
 
 #define INSTANTIATE(dim)                                                                                   \
-  template void         check_geometric_coarse_space(const DoFHandler<dim> &);                             \
-  template CoarseSpace  make_coarse_space(const DoFHandler<dim> &, const AffineConstraints<double> &,      \
-                                         const TrilinosWrappers::SparseMatrix &);                          \
   template unsigned int solve_two_level(const TrilinosWrappers::SparseMatrix &, TrilinosWrappers::MPI::Vector &, \
                                         const TrilinosWrappers::MPI::Vector &, const DoFHandler<dim> &,    \
                                         const AffineConstraints<double> &,                                 \
                                         const std::function<std::vector<std::vector<double>>()> &,       \
-                                        const IterativeSolverSettings &);
+                                        int, const IterativeSolverSettings &);
   ANVIL_INSTANTIATE(INSTANTIATE)
 #undef INSTANTIATE
 } // namespace anvil

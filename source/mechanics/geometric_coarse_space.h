@@ -28,7 +28,12 @@ class Ifpack_Chebyshev;
 namespace anvil
 {
   /**
-   * The prolongation from the coarse Q1^dim space into the fine one. The
+   * The prolongation from the coarse Q1^dim space into the fine one
+   * (coarse_space_prolongation.cc). When every active cell has a parent (a
+   * mesh built with Geometry/Global refinements >= 1: any bodies, gmsh,
+   * curved or distorted cells), the coarse space is Q1^dim on the parent
+   * level and P's rows are the FE's prolongation matrices, a coarse dof
+   * being the fine dof at its parent vertex (same owner). Otherwise the
    * fine mesh must be one axis-parallel box of n_1 × … × n_dim equal cells,
    * n_d even (Geometry/Blocks, one block): the coarse mesh is the same box
    * with n_d / 2 cells, and a fine vertex of grid index i interpolates the
@@ -57,12 +62,12 @@ namespace anvil
     ~CoarseSpace();
   };
 
-  /// InputError naming the parameter unless the mesh is one block of equal
-  /// cells with even subdivisions (collective).
+  /// InputError naming the parameters unless the cells have parents or the
+  /// mesh is one block of equal cells with even subdivisions (collective).
   template <int dim>
   void check_geometric_coarse_space(const dealii::DoFHandler<dim> &dof_handler);
 
-  /// P for K's rows (throws InputError if the mesh is not one even block).
+  /// P for K's rows (throws InputError as check_geometric_coarse_space()).
   template <int dim>
   CoarseSpace make_coarse_space(const dealii::DoFHandler<dim>           &dof_handler,
                                 const dealii::AffineConstraints<double> &constraints,
@@ -83,16 +88,17 @@ namespace anvil
   class TwoLevelPreconditioner
   {
   public:
+    /// @p space outlives the preconditioner (kept across solves); @p coarse_modes: inject()'s.
     TwoLevelPreconditioner(const dealii::TrilinosWrappers::SparseMatrix &K,
-                           CoarseSpace                                 &&space,
-                           const std::vector<std::vector<double>>       &fine_modes,
+                           const CoarseSpace                            &space,
+                           const std::vector<std::vector<double>>       &coarse_modes,
                            const IterativeSolverSettings                &coarse_settings,
                            unsigned int                                  degree,
                            double                                        ratio);
     ~TwoLevelPreconditioner();
     void vmult(dealii::TrilinosWrappers::MPI::Vector &dst, const dealii::TrilinosWrappers::MPI::Vector &src) const;
 
-    CoarseSpace                                                space;
+    const CoarseSpace                                         &space;
     dealii::TrilinosWrappers::SparseMatrix                     coarse_matrix;
 
   private:
@@ -104,6 +110,9 @@ namespace anvil
   };
 
   /// GMRES right-preconditioned by the two-level cycle (as solve_gmres()).
+  /// P and the coarse modes are kept across solves while the mesh and the
+  /// Dirichlet set stay (@p fine_modes is called only when @p mode_set, a
+  /// tag of the mode set, differs from the kept modes'; ANVIL_GMG_KEEP=0: never kept).
   template <int dim>
   unsigned int solve_two_level(const dealii::TrilinosWrappers::SparseMatrix &K,
                                dealii::TrilinosWrappers::MPI::Vector        &x,
@@ -111,5 +120,6 @@ namespace anvil
                                const dealii::DoFHandler<dim>                &dof_handler,
                                const dealii::AffineConstraints<double>      &constraints,
                                const std::function<std::vector<std::vector<double>>()> &fine_modes,
+                               int                                           mode_set,
                                const IterativeSolverSettings                &settings);
 } // namespace anvil

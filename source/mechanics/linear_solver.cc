@@ -155,7 +155,8 @@ namespace anvil
               coarse_isochoric = std::string(m) == "isochoric";
             const unsigned int iterations = solve_two_level<dim>(
               system_matrix, du, system_rhs, dof_handler, *active_constraints,
-              [&] { return rigid_body_modes(mapping, dof_handler, &solution, coarse_isochoric).modes; }, settings);
+              [&] { return rigid_body_modes(mapping, dof_handler, &solution, coarse_isochoric).modes; },
+              coarse_isochoric ? 1 : 0, settings);
             log(iterations, " geometric");
             return iterations;
           }
