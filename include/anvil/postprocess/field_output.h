@@ -34,8 +34,9 @@ namespace anvil
 
     /// Output/VTU encoding = raw: arrays appended raw (vtu_writer.h), else deal.II's zlib.
     bool raw_vtu() const { return raw; }
-    /// Output/Field interval = 1: a write at every step.
-    bool every_step() const { return interval == 1; }
+    /// Output/Field interval > 0: writes come on schedule through the run
+    /// (else only at t = 0 and at the end).
+    bool periodic() const { return interval > 0; }
 
     void save(const std::string &key, std::map<std::string, std::string> &entries) const;
     void load(const std::string &key, const std::map<std::string, std::string> &entries);
