@@ -64,10 +64,7 @@ namespace anvil
     template <int dim>
     const int *CellScatter<dim>::owned_indices(const CopyData &copy) const
     {
-      int *const own = mapping.owned_vector_indices(copy.cell_index, n_dofs);
-      if (own[0] == -2)
-        for (unsigned int i = 0; i < n_dofs; ++i)
-          own[i] = owned_map.LID(static_cast<TrilinosIndex>(copy.dof_indices[i]));
+      int *const own = mapping.owned_vector_indices(copy.cell_index, n_dofs, copy.dof_indices, owned_map);
       for (unsigned int i = 0; i < n_dofs; ++i)
         if (own[i] < 0)
           return nullptr;
@@ -155,15 +152,8 @@ namespace anvil
     template <int dim>
     bool CellScatter<dim>::add_unconstrained(const CopyData &copy, const int *own)
     {
-      signed char &constrained = constrained_cells[copy.cell_index];
-      if (constrained < 0)
-        {
-          constrained = 0;
-          for (unsigned int i = 0; i < n_dofs; ++i)
-            if (constraints.is_constrained(copy.dof_indices[i]))
-              constrained = 1;
-        }
-      if (constrained)
+      if (AssemblyMapping<dim>::is_constrained(constrained_cells[copy.cell_index], copy.dof_indices, n_dofs,
+                                               constraints))
         return false;
       if (!matrix)
         {

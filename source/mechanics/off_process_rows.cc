@@ -48,19 +48,9 @@ namespace anvil
     {
       // The same per-cell records CellScatter keeps (owned local indices,
       // whether a dof is constrained).
-      int *const own = mapping.owned_vector_indices(copy.cell_index, n_dofs);
-      if (own[0] == -2)
-        for (unsigned int i = 0; i < n_dofs; ++i)
-          own[i] = owned_map.LID(static_cast<int>(copy.dof_indices[i]));
-      signed char &constrained = constrained_cells[copy.cell_index];
-      if (constrained < 0)
-        {
-          constrained = 0;
-          for (unsigned int i = 0; i < n_dofs; ++i)
-            if (constraints.is_constrained(copy.dof_indices[i]))
-              constrained = 1;
-        }
-      if (constrained)
+      const int *const own = mapping.owned_vector_indices(copy.cell_index, n_dofs, copy.dof_indices, owned_map);
+      if (AssemblyMapping<dim>::is_constrained(constrained_cells[copy.cell_index], copy.dof_indices, n_dofs,
+                                               constraints))
         return true;
       for (unsigned int i = 0; i < n_dofs; ++i)
         if (own[i] < 0)

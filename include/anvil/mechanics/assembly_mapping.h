@@ -139,6 +139,33 @@ namespace anvil
         return &vector_ids[std::size_t(n_dofs) * active_cell_index];
       }
 
+      /// owned_vector_indices() of a cell, looked up in @p owned_map on first use.
+      template <typename Map, typename Indices>
+      int *owned_vector_indices(unsigned int active_cell_index, unsigned int n_dofs, const Indices &dofs,
+                                const Map &owned_map) const
+      {
+        int *const own = owned_vector_indices(active_cell_index, n_dofs);
+        if (own[0] == -2)
+          for (unsigned int i = 0; i < n_dofs; ++i)
+            own[i] = owned_map.LID(static_cast<decltype(owned_map.GID(0))>(dofs[i]));
+        return own;
+      }
+
+      /// A cell's flag in constrained_cells()'s table, looked up on first use.
+      template <typename Constraints, typename Indices>
+      static bool is_constrained(signed char &flag, const Indices &dofs, unsigned int n_dofs,
+                                 const Constraints &constraints)
+      {
+        if (flag < 0)
+          {
+            flag = 0;
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              if (constraints.is_constrained(dofs[i]))
+                flag = 1;
+          }
+        return flag;
+      }
+
       /**
        * Per active cell index, whether one of its dofs is constrained (1),
        * none is (0) or not looked up yet (−1), for the constraints whose
