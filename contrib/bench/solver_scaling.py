@@ -19,7 +19,8 @@ Cases:
 
 Usage: solver_scaling.py BUILD_DIR OUT_DIR [--small] [--large] [--cases 2d,3d,strip]
        [--solvers iterative,direct] [--sizes '2d:64,128;3d:10'] [--np 2] [--partition 'per body']
-       [--package ML|MueLu] [--preconditioner AMG|geometric] [--refined] [--tag NAME] [--set ENTRY=VALUE ...]
+       [--package ML|MueLu] [--preconditioner AMG|geometric] [--refined [--refinements K]] [--tag NAME]
+       [--set ENTRY=VALUE ...]
 
 --partition sets Geometry/Partition (default: the scene's, p4est's space-filling
 curve); 'per body' cuts every body in np slabs, so that the strip's contact
@@ -53,7 +54,10 @@ preconditioner on the geometric coarse space: doc/linear_solver.md, sessions 20
 and 21); its runs are named ..._geometric. --refined meshes the 2d/3d blocks as
 n/2 subdivisions refined once (Geometry/Global refinements = 1: the same fine
 mesh, p4est's partition of the coarse cells, the coarse space from the mesh
-hierarchy); its runs are named ..._refined.
+hierarchy); its runs are named ..._refined. --refinements K (with --refined) meshes
+n/2^K subdivisions refined K times (the hierarchy path's deeper levels, session 22);
+runs named ..._refinedK. ANVIL_GMG_LEVELS=n forces n geometric levels (default: the
+automatic rule, doc/linear_solver.md session 22); use --tag to tell such runs apart.
 
 --set passes an entry to every run (e.g. 'Mechanics/Linear solver/AMG rebuild
 growth=0' for the hierarchy built at every solve, as before session 8).
@@ -73,15 +77,15 @@ J2 = ["Mechanics/Element=F-bar", "Bodies/body/Material/Model=J2",
 DIRECT_LIMIT = {"2d": 256, "3d": 12, "strip": 100000}
 
 
-REFINED = False  # --refined: the 2d/3d blocks as n/2 subdivisions refined once (the same fine mesh)
+REFINED = 0  # --refined [--refinements k]: the 2d/3d blocks as n/2^k subdivisions refined k times (the same fine mesh)
 
 
 def case_sets(case, n):
     if REFINED and case in ("2d", "3d"):
-        if n % 2:
-            sys.exit("--refined needs even sizes")
-        scene, sets = case_sets_unrefined(case, n // 2)
-        return scene, sets + ["Geometry/Global refinements=1"]
+        if n % (1 << REFINED):
+            sys.exit("--refined needs sizes divisible by 2^k")
+        scene, sets = case_sets_unrefined(case, n >> REFINED)
+        return scene, sets + ["Geometry/Global refinements=%d" % REFINED]
     return case_sets_unrefined(case, n)
 
 
@@ -180,9 +184,11 @@ def main():
         if a == "--preconditioner":
             preconditioner = args[i + 1]
     global REFINED
-    REFINED = "--refined" in args
+    REFINED = 1 if "--refined" in args else 0
+    if REFINED and "--refinements" in args:
+        REFINED = int(args[args.index("--refinements") + 1])
     if REFINED:
-        tag = "_".join(t for t in (tag, "refined") if t)
+        tag = "_".join(t for t in (tag, "refined" + (str(REFINED) if REFINED > 1 else "")) if t)
     if preconditioner != "AMG":
         extra.append("Mechanics/Linear solver/Preconditioner=" + preconditioner)
         tag = "_".join(t for t in (preconditioner, tag) if t)

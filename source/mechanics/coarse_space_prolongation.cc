@@ -22,6 +22,7 @@
 DEAL_II_DISABLE_EXTRA_DIAGNOSTICS
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Map.h>
+#include <Epetra_MpiComm.h>
 DEAL_II_ENABLE_EXTRA_DIAGNOSTICS
 
 namespace anvil
@@ -99,134 +100,36 @@ namespace anvil
     }
 
     /// Session 20's parent arithmetic for one unrefined block (level 0: no parents).
-  template <int dim>
-  CoarseSpace make_box_space(const DoFHandler<dim>                &dof_handler,
-                             const AffineConstraints<double>      &constraints,
-                             const TrilinosWrappers::SparseMatrix &K)
-  {
-    const MPI_Comm          comm = dof_handler.get_communicator();
-    const Box<dim>          box  = find_box(dof_handler);
-    const Epetra_CrsMatrix &A    = K.trilinos_matrix();
-    const Epetra_Map       &rows = A.RowMap();
-
-    // Coarse node (I_1, …, I_dim), lexicographic.
-    std::array<unsigned int, dim> stride;
-    unsigned int                  nodes = 1;
-    for (unsigned int d = 0; d < dim; ++d)
-      {
-        stride[d] = nodes;
-        nodes *= box.cells[d] / 2 + 1;
-      }
-    CoarseSpace space;
-    space.n_coarse_dofs = dim * nodes;
-    const unsigned int p = Utilities::MPI::this_mpi_process(comm), np = Utilities::MPI::n_mpi_processes(comm);
-    const unsigned int first = dim * (std::size_t(nodes) * p / np), last = dim * (std::size_t(nodes) * (p + 1) / np);
-    std::vector<int>   gids(last - first);
-    for (unsigned int k = 0; k < gids.size(); ++k)
-      gids[k] = first + k;
-    space.coarse_map = std::make_unique<Epetra_Map>(static_cast<int>(space.n_coarse_dofs), static_cast<int>(gids.size()),
-                                                    gids.data(), 0, A.Comm());
-
-    // Every owned fine dof once: its grid index and component.
-    struct FineDof
+    template <int dim>
+    CoarseSpace make_box_space(const DoFHandler<dim>                &dof_handler,
+                               const AffineConstraints<double>      &constraints,
+                               const TrilinosWrappers::SparseMatrix &K)
     {
-      int                           row;
-      unsigned int                  component;
-      std::array<unsigned int, dim> index;
-      bool                          constrained;
-    };
-    std::vector<FineDof> fine;
-    fine.reserve(rows.NumMyElements());
-    std::vector<bool> seen(rows.NumMyElements(), false);
-    for (const auto &cell : dof_handler.active_cell_iterators())
-      if (cell->is_locally_owned())
-        for (const unsigned int v : cell->vertex_indices())
-          for (unsigned int c = 0; c < dim; ++c)
-            {
-              const types::global_dof_index dof = cell->vertex_dof_index(v, c);
-              const int                     row = rows.LID(static_cast<int>(dof));
-              if (row < 0 || seen[row])
-                continue;
-              seen[row] = true;
-              FineDof f{row, c, {}, constraints.is_constrained(dof)};
-              for (unsigned int d = 0; d < dim; ++d)
-                f.index[d] = box.index(cell->vertex(v), d);
-              fine.push_back(f);
-            }
-    const auto on_coarse_node = [](const FineDof &f) {
-      return std::all_of(f.index.begin(), f.index.end(), [](const unsigned int i) { return i % 2 == 0; });
-    };
-    const auto coarse_dof = [&](const std::array<unsigned int, dim> &I, const unsigned int c) {
-      unsigned int node = 0;
-      for (unsigned int d = 0; d < dim; ++d)
-        node += I[d] * stride[d];
-      return static_cast<int>(dim * node + c);
-    };
-    // A coarse dof is constrained where the fine dof at its node is (all processes).
-    std::vector<int> constrained(space.n_coarse_dofs, 0);
-    for (const FineDof &f : fine)
-      if (on_coarse_node(f))
-        {
-          std::array<unsigned int, dim> I;
-          for (unsigned int d = 0; d < dim; ++d)
-            I[d] = f.index[d] / 2;
-          const int k = coarse_dof(I, f.component);
-          constrained[k] = f.constrained ? 1 : 0;
-          space.injection.emplace_back(f.row, k);
-        }
-    Utilities::MPI::max(constrained, comm, constrained);
+      const Box<dim>          box  = find_box(dof_handler);
+      const Epetra_CrsMatrix &A    = K.trilinos_matrix();
+      const Epetra_Map       &rows = A.RowMap();
 
-    space.P = std::make_unique<Epetra_CrsMatrix>(Copy, rows, 1 << dim);
-    std::vector<int>    columns;
-    std::vector<double> values;
-    for (const FineDof &f : fine)
-      {
-        columns.clear();
-        values.clear();
-        if (f.constrained)
-          {
-            if (on_coarse_node(f))
+      // Every owned fine dof once: its grid index and component.
+      std::vector<coarse_space_internal::GridDof<dim>> fine;
+      fine.reserve(rows.NumMyElements());
+      std::vector<bool> seen(rows.NumMyElements(), false);
+      for (const auto &cell : dof_handler.active_cell_iterators())
+        if (cell->is_locally_owned())
+          for (const unsigned int v : cell->vertex_indices())
+            for (unsigned int c = 0; c < dim; ++c)
               {
-                std::array<unsigned int, dim> I;
+                const types::global_dof_index dof = cell->vertex_dof_index(v, c);
+                const int                     row = rows.LID(static_cast<int>(dof));
+                if (row < 0 || seen[row])
+                  continue;
+                seen[row] = true;
+                coarse_space_internal::GridDof<dim> f{row, c, {}, constraints.is_constrained(dof)};
                 for (unsigned int d = 0; d < dim; ++d)
-                  I[d] = f.index[d] / 2;
-                columns.push_back(coarse_dof(I, f.component));
-                values.push_back(1.);
+                  f.index[d] = box.index(cell->vertex(v), d);
+                fine.push_back(f);
               }
-          }
-        else
-          // The tensor product of the 1D weights: 1 at an even index, 1/2 at
-          // the two coarse neighbours of an odd one.
-          for (unsigned int corner = 0; corner < (1u << dim); ++corner)
-            {
-              std::array<unsigned int, dim> I;
-              double                        w = 1;
-              for (unsigned int d = 0; d < dim && w > 0; ++d)
-                {
-                  const unsigned int i = f.index[d], up = (corner >> d) & 1;
-                  if (i % 2 == 0)
-                    w *= up ? 0. : 1.;
-                  else
-                    w *= 0.5;
-                  I[d] = i / 2 + up;
-                }
-              if (w == 0)
-                continue;
-              const int k = coarse_dof(I, f.component);
-              if (constrained[k])
-                continue;
-              columns.push_back(k);
-              values.push_back(w);
-            }
-        if (!columns.empty())
-          AssertThrow(space.P->InsertGlobalValues(rows.GID(f.row), columns.size(), values.data(), columns.data()) == 0,
-                      ExcMessage("geometric coarse space: P's insertion failed"));
-      }
-    AssertThrow(space.P->FillComplete(*space.coarse_map, A.RangeMap()) == 0,
-                ExcMessage("geometric coarse space: P's FillComplete failed"));
-    return space;
-  }
-
+      return coarse_space_internal::coarsen_box<dim>(fine, box.cells, rows, A.RangeMap());
+    }
 
     /// The child number of @p cell in its parent.
     template <int dim>
@@ -383,6 +286,108 @@ namespace anvil
     }
   } // namespace
 
+  namespace coarse_space_internal
+  {
+    template <int dim>
+    CoarseSpace coarsen_box(const std::vector<GridDof<dim>> &fine, const std::array<unsigned int, dim> &cells,
+                            const Epetra_Map &rows, const Epetra_Map &range)
+    {
+      const MPI_Comm comm = dynamic_cast<const Epetra_MpiComm &>(rows.Comm()).Comm();
+      // Coarse node (I_1, …, I_dim), lexicographic.
+      std::array<unsigned int, dim> stride;
+      unsigned int                  nodes = 1;
+      CoarseSpace                   space;
+      for (unsigned int d = 0; d < dim; ++d)
+        {
+          stride[d] = nodes;
+          nodes *= cells[d] / 2 + 1;
+          space.box_cells[d] = cells[d] / 2;
+        }
+      space.n_coarse_dofs = dim * nodes;
+      const unsigned int p = Utilities::MPI::this_mpi_process(comm), np = Utilities::MPI::n_mpi_processes(comm);
+      const unsigned int first = dim * (std::size_t(nodes) * p / np), last = dim * (std::size_t(nodes) * (p + 1) / np);
+      std::vector<int>   gids(last - first);
+      for (unsigned int k = 0; k < gids.size(); ++k)
+        gids[k] = first + k;
+      space.coarse_map = std::make_unique<Epetra_Map>(static_cast<int>(space.n_coarse_dofs), static_cast<int>(gids.size()),
+                                                      gids.data(), 0, rows.Comm());
+
+      const auto on_coarse_node = [](const GridDof<dim> &f) {
+        return std::all_of(f.index.begin(), f.index.end(), [](const unsigned int i) { return i % 2 == 0; });
+      };
+      const auto coarse_dof = [&](const std::array<unsigned int, dim> &I, const unsigned int c) {
+        unsigned int node = 0;
+        for (unsigned int d = 0; d < dim; ++d)
+          node += I[d] * stride[d];
+        return static_cast<int>(dim * node + c);
+      };
+      // A coarse dof is constrained where the fine dof at its node is (all processes).
+      std::vector<int> &constrained = space.box_constrained;
+      constrained.assign(space.n_coarse_dofs, 0);
+      for (const GridDof<dim> &f : fine)
+        if (on_coarse_node(f))
+          {
+            std::array<unsigned int, dim> I;
+            for (unsigned int d = 0; d < dim; ++d)
+              I[d] = f.index[d] / 2;
+            const int k = coarse_dof(I, f.component);
+            constrained[k] = f.constrained ? 1 : 0;
+            space.injection.emplace_back(f.row, k);
+          }
+      Utilities::MPI::max(constrained, comm, constrained);
+
+      space.P = std::make_unique<Epetra_CrsMatrix>(Copy, rows, 1 << dim);
+      std::vector<int>    columns;
+      std::vector<double> values;
+      for (const GridDof<dim> &f : fine)
+        {
+          columns.clear();
+          values.clear();
+          if (f.constrained)
+            {
+              if (on_coarse_node(f))
+                {
+                  std::array<unsigned int, dim> I;
+                  for (unsigned int d = 0; d < dim; ++d)
+                    I[d] = f.index[d] / 2;
+                  columns.push_back(coarse_dof(I, f.component));
+                  values.push_back(1.);
+                }
+            }
+          else
+            // The tensor product of the 1D weights: 1 at an even index, 1/2 at
+            // the two coarse neighbours of an odd one.
+            for (unsigned int corner = 0; corner < (1u << dim); ++corner)
+              {
+                std::array<unsigned int, dim> I;
+                double                        w = 1;
+                for (unsigned int d = 0; d < dim && w > 0; ++d)
+                  {
+                    const unsigned int i = f.index[d], up = (corner >> d) & 1;
+                    if (i % 2 == 0)
+                      w *= up ? 0. : 1.;
+                    else
+                      w *= 0.5;
+                    I[d] = i / 2 + up;
+                  }
+                if (w == 0)
+                  continue;
+                const int k = coarse_dof(I, f.component);
+                if (constrained[k])
+                  continue;
+                columns.push_back(k);
+                values.push_back(w);
+              }
+          if (!columns.empty())
+            AssertThrow(space.P->InsertGlobalValues(rows.GID(f.row), columns.size(), values.data(), columns.data()) == 0,
+                        ExcMessage("geometric coarse space: P's insertion failed"));
+        }
+      AssertThrow(space.P->FillComplete(*space.coarse_map, range) == 0,
+                  ExcMessage("geometric coarse space: P's FillComplete failed"));
+      return space;
+    }
+  } // namespace coarse_space_internal
+
   template <int dim>
   void check_geometric_coarse_space(const DoFHandler<dim> &dof_handler)
   {
@@ -404,6 +409,9 @@ namespace anvil
   }
 
 #define INSTANTIATE(dim)                                                                              \
+  template CoarseSpace coarse_space_internal::coarsen_box<dim>(                                          \
+    const std::vector<coarse_space_internal::GridDof<dim>> &, const std::array<unsigned int, dim> &,  \
+    const Epetra_Map &, const Epetra_Map &);                                                          \
   template void        check_geometric_coarse_space(const DoFHandler<dim> &);                         \
   template CoarseSpace make_coarse_space(const DoFHandler<dim> &, const AffineConstraints<double> &,  \
                                          const TrilinosWrappers::SparseMatrix &);

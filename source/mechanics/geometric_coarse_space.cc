@@ -1,5 +1,5 @@
-// The two-level (geometric coarse space) preconditioner of the displacement
-// system: geometric_coarse_space.h.
+// The multilevel (geometric coarse spaces) preconditioner of the displacement
+// system, its kept spaces and its solve: geometric_coarse_space.h.
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/timer.h>
 #include <deal.II/base/utilities.h>
@@ -28,8 +28,6 @@ DEAL_II_DISABLE_EXTRA_DIAGNOSTICS
 #include <Epetra_MpiComm.h>
 #include <Epetra_MultiVector.h>
 #include <Epetra_Vector.h>
-#include <Ifpack_Chebyshev.h>
-#include <Teuchos_ParameterList.hpp>
 DEAL_II_ENABLE_EXTRA_DIAGNOSTICS
 
 namespace anvil
@@ -79,68 +77,11 @@ namespace anvil
     return coarse;
   }
 
-  TwoLevelPreconditioner::TwoLevelPreconditioner(const TrilinosWrappers::SparseMatrix &K_,
-                                                 const CoarseSpace                    &space_,
-                                                 const std::vector<std::vector<double>> &coarse_modes,
-                                                 const IterativeSolverSettings        &coarse_settings,
-                                                 const unsigned int                    degree,
-                                                 const double                          ratio)
-    : space(space_)
-    , K(K_.trilinos_matrix())
-  {
-    {
-      const std::unique_ptr<Epetra_CrsMatrix> Ac = galerkin_product(K, space);
-      coarse_matrix.reinit(*Ac, true);
-    }
-    coarse_amg = build_amg(coarse_matrix, coarse_modes, coarse_settings);
-
-    Epetra_Vector inverse_diagonal(K.RowMap());
-    K.ExtractDiagonalCopy(inverse_diagonal);
-    inverse_diagonal.Reciprocal(inverse_diagonal);
-    double lambda_max = 0;
-    Ifpack_Chebyshev::PowerMethod(K, inverse_diagonal, 10, lambda_max);
-    smoother = std::make_unique<Ifpack_Chebyshev>(&K);
-    Teuchos::ParameterList list;
-    list.set("chebyshev: degree", static_cast<int>(degree));
-    list.set("chebyshev: ratio eigenvalue", ratio);
-    // The power method's estimate from below, raised as ML does.
-    list.set("chebyshev: max eigenvalue", 1.1 * lambda_max);
-    list.set("chebyshev: zero starting solution", true);
-    smoother->SetParameters(list);
-    AssertThrow(smoother->Initialize() == 0 && smoother->Compute() == 0,
-                ExcMessage("geometric coarse space: Chebyshev set-up failed"));
-
-    r = std::make_unique<Epetra_MultiVector>(K.RowMap(), 1);
-    t = std::make_unique<Epetra_MultiVector>(K.RowMap(), 1);
-    const IndexSet coarse_owned = coarse_matrix.locally_owned_range_indices();
-    rc.reinit(coarse_owned, K_.get_mpi_communicator());
-    ec.reinit(coarse_owned, K_.get_mpi_communicator());
-  }
-
-  TwoLevelPreconditioner::~TwoLevelPreconditioner() = default;
-
-  void TwoLevelPreconditioner::vmult(TrilinosWrappers::MPI::Vector       &dst,
-                                     const TrilinosWrappers::MPI::Vector &src) const
-  {
-    const Epetra_MultiVector &b = src.trilinos_vector();
-    Epetra_MultiVector       &y = dst.trilinos_vector();
-    smoother->ApplyInverse(b, y);
-    K.Apply(y, *r);
-    r->Update(1., b, -1.);
-    space.P->Multiply(true, *r, rc.trilinos_vector());
-    coarse_amg->vmult(ec, rc);
-    space.P->Multiply(false, ec.trilinos_vector(), *t);
-    y.Update(1., *t, 1.);
-    K.Apply(y, *r);
-    r->Update(1., b, -1.);
-    smoother->ApplyInverse(*r, *t);
-    y.Update(1., *t, 1.);
-  }
-
   namespace
   {
     /**
-     * P and the injected coarse modes kept across solves while the mesh, the
+     * The spaces (P, P₂, …) and the coarsest level's injected modes kept
+     * across solves while the mesh, the
      * DoF numbering and the Dirichlet set do not change (contact and
      * plasticity change K, not P): dropped when the triangulation changes or
      * goes, rebuilt when the owned constrained dofs or K's rows differ. The
@@ -152,6 +93,7 @@ namespace anvil
       const void                        *dof_handler = nullptr;
       std::uint64_t                      constrained = 0;
       std::unique_ptr<CoarseSpace>       space;
+      unsigned int                       levels   = 2;
       int                                mode_set = -1;
       std::vector<std::vector<double>>   coarse_modes;
       boost::signals2::scoped_connection change, clear;
@@ -216,12 +158,21 @@ namespace anvil
     IterativeSolverSettings coarse = settings;
     coarse.components              = dim;
     coarse.aggregate_blocks        = false;
-    unsigned int degree            = 4;
-    double       ratio             = 30;
+    LevelSmoothing smoothing;
     if (const char *s = std::getenv("ANVIL_GMG_DEGREE"))
-      degree = std::max(1, std::atoi(s));
+      smoothing.fine_degree = std::max(1, std::atoi(s));
+    if (const char *s = std::getenv("ANVIL_GMG_MIDDLE_DEGREE"))
+      smoothing.middle_degree = std::max(1, std::atoi(s));
     if (const char *s = std::getenv("ANVIL_GMG_RATIO"))
-      ratio = std::atof(s);
+      smoothing.ratio = std::atof(s);
+    // Benchmarks and tests: ANVIL_GMG_LEVELS=n asks for n levels (as many as
+    // the mesh allows), else the automatic rule (geometric_coarse_space.h).
+    unsigned int max_levels = 16, min_rows = min_rows_to_coarsen;
+    if (const char *s = std::getenv("ANVIL_GMG_LEVELS"))
+      {
+        max_levels = std::max(2, std::atoi(s));
+        min_rows   = 0;
+      }
     // Benchmarks: ANVIL_GMG_KEEP=0 builds P and the modes at every solve (session 20).
     const bool  keep  = !std::getenv("ANVIL_GMG_KEEP") || std::string(std::getenv("ANVIL_GMG_KEEP")) != "0";
     const bool  log   = std::getenv("ANVIL_GMG_LOG") && Utilities::MPI::this_mpi_process(K.get_mpi_communicator()) == 0;
@@ -237,23 +188,41 @@ namespace anvil
       {
         kept.drop();
         kept.space       = std::make_unique<CoarseSpace>(make_coarse_space(dof_handler, constraints, K));
+        kept.levels      = add_coarse_levels(dof_handler, constraints, K, *kept.space, max_levels, min_rows);
         kept.dof_handler = &dof_handler;
         kept.constrained = constrained;
         auto &signals    = dof_handler.get_triangulation().signals;
         kept.change      = signals.any_change.connect([] { kept_space().drop(); });
         kept.clear       = signals.clear.connect([] { kept_space().drop(); });
+        if (log)
+          {
+            std::cout << "geometric coarse space: " << kept.levels << " levels, rows " << K.m();
+            for (const CoarseSpace *s = kept.space.get(); s; s = s->coarser.get())
+              std::cout << ", " << s->n_coarse_dofs;
+            std::cout << std::endl;
+          }
         built("P built");
       }
     if (kept.mode_set != mode_set)
       {
         timer.restart();
+        // Injected level by level down to the coarsest (its ML's near-null space).
         kept.coarse_modes = inject(*kept.space, fine_modes(), K.trilinos_matrix());
-        kept.mode_set     = mode_set;
+        for (const CoarseSpace *s = kept.space->coarser.get(); s; s = s->coarser.get())
+          kept.coarse_modes = inject(*s, kept.coarse_modes, K.trilinos_matrix());
+        kept.mode_set = mode_set;
         built("coarse modes injected");
       }
     unsigned int iterations = 0;
     {
-      const TwoLevelPreconditioner preconditioner(K, *kept.space, kept.coarse_modes, coarse, degree, ratio);
+      // Deeper cycles form their operators row by row (no A P transient);
+      // ANVIL_GMG_BY_ROWS=0/1 chooses for benchmarks.
+      bool by_rows = kept.levels > 2;
+      if (const char *s = std::getenv("ANVIL_GMG_BY_ROWS"))
+        by_rows = std::string(s) == "1";
+      timer.restart();
+      const MultilevelPreconditioner preconditioner(K, *kept.space, kept.coarse_modes, coarse, smoothing, by_rows);
+      built("cycle set up");
       // The same GMRES as ML's (stall stop, pool given back).
       iterations = run_gmres(K, x, b, preconditioner, settings);
     }

@@ -1,12 +1,23 @@
 #pragma once
 
-// A two-level preconditioner for the displacement system (private to
-// linear_solver.cc and the tests): Chebyshev on D⁻¹K on the fine mesh and a
+// A multilevel preconditioner for the displacement system (private to
+// linear_solver.cc and the tests): Chebyshev on D⁻¹K on the fine mesh, a
 // coarse correction on the Q1 space of the mesh one refinement coarser,
-// A_c = Pᵀ K P solved by one ML V-cycle. Its memory is P (~3.4 entries per
-// fine row) and A_c (1/8 of the rows, 27-node stencil), ~1/7 of K, against
-// ML's smoothed aggregation on 11 modes whose Galerkin product K·P alone
-// peaks at ~3 KB/DoF (doc/memory.md, issue 15).
+// A_1 = Pᵀ K P, and so on: Chebyshev on D_ℓ⁻¹A_ℓ on each middle level ℓ,
+// one ML V-cycle on the coarsest A_{L−1}; one V-cycle per GMRES iteration.
+// Two levels (session 20) cost P (~3.4 entries per fine row) and A_1 (1/8
+// of the rows, 27-node stencil), ~1/7 of K, against ML's smoothed
+// aggregation on 11 modes whose Galerkin product K·P alone peaks at
+// ~3 KB/DoF (doc/memory.md, issue 15); at 1 M DoFs ML's set-up on A_1 set
+// the run's peak, so large meshes get more levels (session 22).
+//
+// The number of levels is automatic: level ℓ ≥ 1 is coarsened once more
+// while the mesh allows it (one more generation of parents, or an unrefined
+// block's subdivisions still even) and A_ℓ has at least
+// min_rows_to_coarsen rows, so that 20³ and 30³ keep two levels (A_1: 3 993
+// and 12 288 rows) and 32³ … 68³ (1 M DoFs) get three (68³: 128 625 → 17 496
+// rows, 17 cells: no fourth);
+// ANVIL_GMG_LEVELS=n asks for n (as many as the mesh allows).
 
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/lac/affine_constraints.h>
@@ -16,6 +27,7 @@
 
 #include <anvil/mechanics/linear_solver.h>
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -53,14 +65,51 @@ namespace anvil
   struct CoarseSpace
   {
     std::unique_ptr<Epetra_Map>       coarse_map;
+    /// Rows: the finer level's (K's for the first coarse space).
     std::unique_ptr<Epetra_CrsMatrix> P;
-    /// (owned fine row, coarse dof) where the fine dof sits on a coarse node.
+    /// (owned finer row, coarse dof) where the finer dof sits on a coarse node.
     std::vector<std::pair<int, int>> injection;
     unsigned int                     n_coarse_dofs = 0;
+    /// Refinements between K's mesh and this space (1: the first coarse space).
+    unsigned int                     depth = 1;
+    /// Box path: this space's cells per direction (0: the hierarchy path),
+    /// and every coarse dof's Dirichlet flag (all processes).
+    std::array<unsigned int, 3> box_cells{};
+    std::vector<int>            box_constrained;
+    /// Hierarchy path, depth >= 2: (K's owned row, coarse dof) of the fine
+    /// dofs at this space's nodes (depth 1: the injection).
+    std::vector<std::pair<int, int>> fine_nodes;
+    /// The next coarser space (its P's rows are this space's dofs), or none.
+    std::unique_ptr<CoarseSpace> coarser;
     CoarseSpace();
     CoarseSpace(CoarseSpace &&);
     ~CoarseSpace();
   };
+
+  /// Levels ℓ >= 1 with at least this many rows are coarsened again when
+  /// the mesh allows: at 32³ cells (A_1 14 739 rows) three levels cost −4 %
+  /// CPU, −10 % memory and −1.8 Krylov per solve against two, at 24³ (6 591)
+  /// +4 % CPU; 30³ (12 288) keeps two (doc/linear_solver.md, session 22).
+  constexpr unsigned int min_rows_to_coarsen = 14000;
+
+  namespace coarse_space_internal
+  {
+    /// An owned dof of a box level: its row, component, grid index (vertex), Dirichlet flag.
+    template <int dim>
+    struct GridDof
+    {
+      int                           row;
+      unsigned int                  component;
+      std::array<unsigned int, dim> index;
+      bool                          constrained;
+    };
+
+    /// The box of @p cells (even) halved: its space, P for the rows of @p
+    /// fine (one entry per owned row of @p rows; coarse_space_prolongation.cc).
+    template <int dim>
+    CoarseSpace coarsen_box(const std::vector<GridDof<dim>> &fine, const std::array<unsigned int, dim> &cells,
+                            const Epetra_Map &rows, const Epetra_Map &range);
+  } // namespace coarse_space_internal
 
   /// InputError naming the parameters unless the cells have parents or the
   /// mesh is one block of equal cells with even subdivisions (collective).
@@ -73,44 +122,89 @@ namespace anvil
                                 const dealii::AffineConstraints<double> &constraints,
                                 const dealii::TrilinosWrappers::SparseMatrix &K);
 
-  /// A_c = Pᵀ K P (EpetraExt, K P transient).
+  /**
+   * Appends coarser spaces to @p first (coarse_space_levels.cc) while the
+   * hierarchy has one more generation of parents (every active cell on one
+   * level >= depth + 1) or the box's cells stay even, the last space has at
+   * least @p min_rows dofs and there are fewer than @p max_levels levels
+   * (the fine one counted). The levels it made (2: none added).
+   */
+  template <int dim>
+  unsigned int add_coarse_levels(const dealii::DoFHandler<dim>           &dof_handler,
+                                 const dealii::AffineConstraints<double> &constraints,
+                                 const dealii::TrilinosWrappers::SparseMatrix &K,
+                                 CoarseSpace                             &first,
+                                 unsigned int                             max_levels,
+                                 unsigned int                             min_rows);
+
+  /// A_c = Pᵀ K P (EpetraExt, K P transient): the two-level cycle's.
   std::unique_ptr<Epetra_CrsMatrix> galerkin_product(const Epetra_CrsMatrix &K, const CoarseSpace &space);
 
-  /// Fine-dof vectors injected at the coarse nodes (owned coarse rows).
+  /// A_c = Pᵀ A P row by row of A_c (galerkin_product.cc): no A P, transients
+  /// of P's size; twice EpetraExt's multiplications. The deeper cycles'.
+  std::unique_ptr<Epetra_CrsMatrix> galerkin_product_by_rows(const Epetra_CrsMatrix &A, const Epetra_CrsMatrix &P);
+
+  /// Finer-level vectors (owned rows) injected at the coarse nodes (owned coarse rows).
   std::vector<std::vector<double>> inject(const CoarseSpace &space, const std::vector<std::vector<double>> &fine,
                                           const Epetra_CrsMatrix &K);
 
+  /// Chebyshev settings of the smoothed levels.
+  struct LevelSmoothing
+  {
+    unsigned int fine_degree   = 4;
+    /// Degree 8 on A_1 keeps Krylov at two levels' count (24³, 32³ with
+    /// three levels: 4 → 28.7 / –, 6 → 26.6 / –, 8 → 25.8 / 27.3 per solve
+    /// against 26.0 / 29.1 with two; doc/linear_solver.md, session 22).
+    unsigned int middle_degree = 8;
+    double       ratio         = 30;
+  };
+
   /**
-   * One V-cycle per vmult: y = S b; y += P M_c Pᵀ (b − K y); y += S (b − K y),
-   * S: Chebyshev of @p degree on D⁻¹K over [λ_max/ratio, λ_max] (λ_max by
-   * the power method), M_c: one ML V-cycle on A_c.
+   * One V-cycle per vmult (multilevel_cycle.cc); on level ℓ < L − 1:
+   * y = S_ℓ b; y += P_ℓ cycle_{ℓ+1}(P_ℓᵀ (b − A_ℓ y)); y += S_ℓ (b − A_ℓ y),
+   * S_ℓ: Chebyshev on D_ℓ⁻¹A_ℓ over [λ_max/ratio, λ_max] (λ_max by the power
+   * method), the coarsest: one ML V-cycle on A_{L−1}. Two levels: session
+   * 20's cycle, A_1 by galerkin_product(); more: galerkin_product_by_rows().
    */
-  class TwoLevelPreconditioner
+  class MultilevelPreconditioner
   {
   public:
-    /// @p space outlives the preconditioner (kept across solves); @p coarse_modes: inject()'s.
-    TwoLevelPreconditioner(const dealii::TrilinosWrappers::SparseMatrix &K,
-                           const CoarseSpace                            &space,
-                           const std::vector<std::vector<double>>       &coarse_modes,
-                           const IterativeSolverSettings                &coarse_settings,
-                           unsigned int                                  degree,
-                           double                                        ratio);
-    ~TwoLevelPreconditioner();
+    /// @p space (and its coarser ones) outlives the preconditioner; @p coarse_modes: the coarsest level's.
+    MultilevelPreconditioner(const dealii::TrilinosWrappers::SparseMatrix &K,
+                             const CoarseSpace                            &space,
+                             const std::vector<std::vector<double>>       &coarse_modes,
+                             const IterativeSolverSettings                &coarse_settings,
+                             const LevelSmoothing                         &smoothing,
+                             bool                                          by_rows);
+    ~MultilevelPreconditioner();
     void vmult(dealii::TrilinosWrappers::MPI::Vector &dst, const dealii::TrilinosWrappers::MPI::Vector &src) const;
+    unsigned int n_levels() const { return levels.size() + 1; }
 
-    const CoarseSpace                                         &space;
-    dealii::TrilinosWrappers::SparseMatrix                     coarse_matrix;
+    /// The coarsest level's matrix.
+    dealii::TrilinosWrappers::SparseMatrix coarse_matrix;
 
   private:
-    const Epetra_CrsMatrix                                    &K;
-    std::unique_ptr<Ifpack_Chebyshev>                          smoother;
+    struct Level
+    {
+      const Epetra_CrsMatrix                     *A = nullptr;
+      std::unique_ptr<Epetra_CrsMatrix>           kept_A; // middle levels
+      const Epetra_CrsMatrix                     *P = nullptr;
+      std::unique_ptr<Ifpack_Chebyshev>           smoother;
+      mutable std::unique_ptr<Epetra_MultiVector> b, y, r, t;
+      Level();
+      Level(Level &&);
+      ~Level();
+    };
+    void cycle(unsigned int level, const Epetra_MultiVector &b, Epetra_MultiVector &y) const;
+
+    /// The smoothed levels 0 … L − 2.
+    std::vector<Level>                                         levels;
     std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> coarse_amg;
-    mutable std::unique_ptr<Epetra_MultiVector>                r, t;
     mutable dealii::TrilinosWrappers::MPI::Vector              rc, ec;
   };
 
-  /// GMRES right-preconditioned by the two-level cycle (as solve_gmres()).
-  /// P and the coarse modes are kept across solves while the mesh and the
+  /// GMRES right-preconditioned by the multilevel cycle (as solve_gmres()).
+  /// The spaces and the coarse modes are kept across solves while the mesh and the
   /// Dirichlet set stay (@p fine_modes is called only when @p mode_set, a
   /// tag of the mode set, differs from the kept modes'; ANVIL_GMG_KEEP=0: never kept).
   template <int dim>

@@ -1,0 +1,131 @@
+// The V-cycle of the geometric coarse spaces (geometric_coarse_space.h).
+// Two levels do what session 20's TwoLevelPreconditioner did, operation for
+// operation (A_1 by EpetraExt, the same Chebyshev, the same ML), so their
+// answers stay bit-identical; deeper cycles smooth each middle level with
+// Chebyshev on D_ℓ⁻¹A_ℓ and form A_{ℓ+1} row by row (galerkin_product.cc).
+#include <deal.II/base/exceptions.h>
+#include <deal.II/base/index_set.h>
+
+#include "geometric_coarse_space.h"
+
+DEAL_II_DISABLE_EXTRA_DIAGNOSTICS
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_Map.h>
+#include <Epetra_MultiVector.h>
+#include <Epetra_Vector.h>
+#include <Ifpack_Chebyshev.h>
+#include <Teuchos_ParameterList.hpp>
+DEAL_II_ENABLE_EXTRA_DIAGNOSTICS
+
+namespace anvil
+{
+  using namespace dealii;
+
+  namespace
+  {
+    /// Chebyshev of @p degree on D⁻¹A over [λ_max/ratio, λ_max].
+    std::unique_ptr<Ifpack_Chebyshev> chebyshev(const Epetra_CrsMatrix &A, const unsigned int degree, const double ratio)
+    {
+      Epetra_Vector inverse_diagonal(A.RowMap());
+      A.ExtractDiagonalCopy(inverse_diagonal);
+      inverse_diagonal.Reciprocal(inverse_diagonal);
+      double lambda_max = 0;
+      Ifpack_Chebyshev::PowerMethod(A, inverse_diagonal, 10, lambda_max);
+      auto smoother = std::make_unique<Ifpack_Chebyshev>(&A);
+      Teuchos::ParameterList list;
+      list.set("chebyshev: degree", static_cast<int>(degree));
+      list.set("chebyshev: ratio eigenvalue", ratio);
+      // The power method's estimate from below, raised as ML does.
+      list.set("chebyshev: max eigenvalue", 1.1 * lambda_max);
+      list.set("chebyshev: zero starting solution", true);
+      smoother->SetParameters(list);
+      AssertThrow(smoother->Initialize() == 0 && smoother->Compute() == 0,
+                  ExcMessage("geometric coarse space: Chebyshev set-up failed"));
+      return smoother;
+    }
+  } // namespace
+
+  MultilevelPreconditioner::Level::Level()              = default;
+  MultilevelPreconditioner::Level::Level(Level &&)      = default;
+  MultilevelPreconditioner::Level::~Level()             = default;
+
+  MultilevelPreconditioner::MultilevelPreconditioner(const TrilinosWrappers::SparseMatrix   &K,
+                                                     const CoarseSpace                      &space,
+                                                     const std::vector<std::vector<double>> &coarse_modes,
+                                                     const IterativeSolverSettings          &coarse_settings,
+                                                     const LevelSmoothing                   &smoothing,
+                                                     const bool                              by_rows)
+  {
+    std::vector<const CoarseSpace *> spaces;
+    for (const CoarseSpace *s = &space; s; s = s->coarser.get())
+      spaces.push_back(s);
+    levels.resize(spaces.size());
+    levels[0].A = &K.trilinos_matrix();
+    // The operators finest first; each middle one is kept, the coarsest
+    // copied into deal.II's matrix for ML and dropped.
+    for (unsigned int l = 0; l < spaces.size(); ++l)
+      {
+        levels[l].P = spaces[l]->P.get();
+        std::unique_ptr<Epetra_CrsMatrix> coarser =
+          by_rows ? galerkin_product_by_rows(*levels[l].A, *spaces[l]->P) : galerkin_product(*levels[l].A, *spaces[l]);
+        if (l + 1 < spaces.size())
+          {
+            levels[l + 1].kept_A = std::move(coarser);
+            levels[l + 1].A      = levels[l + 1].kept_A.get();
+          }
+        else
+          coarse_matrix.reinit(*coarser, true);
+      }
+    coarse_amg = build_amg(coarse_matrix, coarse_modes, coarse_settings);
+
+    for (unsigned int l = 0; l < levels.size(); ++l)
+      {
+        Level &level   = levels[l];
+        level.smoother = chebyshev(*level.A, l == 0 ? smoothing.fine_degree : smoothing.middle_degree, smoothing.ratio);
+        level.r        = std::make_unique<Epetra_MultiVector>(level.A->RowMap(), 1);
+        level.t        = std::make_unique<Epetra_MultiVector>(level.A->RowMap(), 1);
+        if (l > 0)
+          {
+            level.b = std::make_unique<Epetra_MultiVector>(level.A->RowMap(), 1);
+            level.y = std::make_unique<Epetra_MultiVector>(level.A->RowMap(), 1);
+          }
+      }
+    const IndexSet coarse_owned = coarse_matrix.locally_owned_range_indices();
+    rc.reinit(coarse_owned, K.get_mpi_communicator());
+    ec.reinit(coarse_owned, K.get_mpi_communicator());
+  }
+
+  MultilevelPreconditioner::~MultilevelPreconditioner() = default;
+
+  void MultilevelPreconditioner::vmult(TrilinosWrappers::MPI::Vector       &dst,
+                                       const TrilinosWrappers::MPI::Vector &src) const
+  {
+    cycle(0, src.trilinos_vector(), dst.trilinos_vector());
+  }
+
+  void MultilevelPreconditioner::cycle(const unsigned int l, const Epetra_MultiVector &b, Epetra_MultiVector &y) const
+  {
+    const Level &level = levels[l];
+    level.smoother->ApplyInverse(b, y);
+    level.A->Apply(y, *level.r);
+    level.r->Update(1., b, -1.);
+    if (l + 1 == levels.size())
+      {
+        level.P->Multiply(true, *level.r, rc.trilinos_vector());
+        coarse_amg->vmult(ec, rc);
+        level.P->Multiply(false, ec.trilinos_vector(), *level.t);
+      }
+    else
+      {
+        const Level &next = levels[l + 1];
+        level.P->Multiply(true, *level.r, *next.b);
+        cycle(l + 1, *next.b, *next.y);
+        level.P->Multiply(false, *next.y, *level.t);
+      }
+    y.Update(1., *level.t, 1.);
+    level.A->Apply(y, *level.r);
+    level.r->Update(1., b, -1.);
+    level.smoother->ApplyInverse(*level.r, *level.t);
+    y.Update(1., *level.t, 1.);
+  }
+} // namespace anvil
