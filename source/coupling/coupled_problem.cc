@@ -197,6 +197,7 @@ namespace anvil
   template <int dim>
   void CoupledProblem<dim>::connect_heat_sources()
   {
+    mechanical->keep_heat_sources();
     thermal->set_heat_source([this](const typename DoFHandler<dim>::active_cell_iterator &cell,
                                     const unsigned int q) { return mechanical->heat_source(cell, q); });
     if (!contact.empty() && contact.has_heat())

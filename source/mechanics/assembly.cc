@@ -103,7 +103,7 @@ namespace anvil
                           TrilinosWrappers::SparseMatrix *matrix,
                           const std::array<TrilinosWrappers::MPI::Vector *, 4> &v, const IndexSet &owned,
                           const unsigned int n_dofs, const bool dynamic, const bool contact,
-                          const MPI_Comm comm)
+                          const MPI_Comm comm, std::shared_ptr<void> &plan)
     {
       if (Utilities::MPI::n_mpi_processes(comm) == 1 || contact)
         return nullptr;
@@ -114,10 +114,12 @@ namespace anvil
       const bool ok = owned.is_contiguous() && values[0] && values[1] && values[2] && (!dynamic || values[3]);
       if (Utilities::MPI::min(ok ? 1 : 0, comm) == 0)
         return nullptr;
+      if (!plan)
+        plan = std::make_shared<OffProcessPlan>();
       return std::make_unique<OffProcessRows<dim>>(
         mapping, constraints,
         matrix ? const_cast<Epetra_CrsMatrix *>(&matrix->trilinos_matrix()) : nullptr, values, map,
-        n_dofs, dynamic, comm);
+        n_dofs, dynamic, comm, *static_cast<OffProcessPlan *>(plan.get()));
     }
   } // namespace
 
@@ -145,8 +147,9 @@ namespace anvil
     c.body_force            = gravity.norm() > 0;
     c.materials             = &materials;
     c.points                = &points;
-    c.heat_sources          = &heat_sources;
-    c.thermoelastic_sources = &thermoelastic_sources;
+    // (Null where no coupling reads them: keep_heat_sources().)
+    c.heat_sources          = heat_sources.empty() ? nullptr : &heat_sources;
+    c.thermoelastic_sources = thermoelastic_sources.empty() ? nullptr : &thermoelastic_sources;
     c.plastic_work_rates    = &plastic_work_rates;
     c.node_masses           = &node_masses;
     c.step_start            = &step_start;
@@ -169,7 +172,8 @@ namespace anvil
     const std::unique_ptr<OffProcessRows<dim>> off_process = make_off_process_rows(
       *assembly_mapping, *active_constraints, with_matrix ? &system_matrix : nullptr,
       {{&system_rhs, &internal_force, &external_force, &inertia_force}}, locally_owned_dofs,
-      fe.n_dofs_per_cell(), parameters.dynamic, static_cast<bool>(contact), mpi_communicator);
+      fe.n_dofs_per_cell(), parameters.dynamic, static_cast<bool>(contact), mpi_communicator,
+      off_process_plan);
     if (with_matrix && off_process)
       const_cast<Epetra_CrsMatrix &>(system_matrix.trilinos_matrix()).PutScalar(0.);
     else if (with_matrix)

@@ -21,6 +21,12 @@ namespace anvil
     {
       return dynamic_cast<const parallel::distributed::Triangulation<dim> *>(&triangulation) != nullptr;
     }
+
+    // A block's mask bit: no per-point temperatures follow the states (a
+    // scene without a temperature field keeps none, point_setup.cc). Set,
+    // not cleared, for their absence: format 4 as written before carries
+    // them always, and reads the same.
+    constexpr unsigned int no_point_temperatures = 1u << 30;
   } // namespace
 
   template <int dim>
@@ -40,7 +46,8 @@ namespace anvil
     //   force are not), the number c of the cell's dofs it carries and their
     //   positions in the cell, the carried values of each saved vector, then
     //   per point (size, state) and the points' temperatures at the end of
-    //   their last step (heat scenes).
+    //   their last step (scenes with a temperature field; without, the
+    //   mask's no_point_temperatures bit).
     // Each owned dof is carried by one cell of its owner (the first in active
     // order), not by every cell around it: format 3 saved each vertex's values
     // eight times (3D Q1), 9 × 24 doubles a cell, most of the checkpoint, and
@@ -51,7 +58,7 @@ namespace anvil
     const auto targets = checkpoint_targets();
     checkpoint_transfer.reset();
     checkpoint_vectors.clear();
-    unsigned int mask = 0;
+    unsigned int mask = material_temperature_old.empty() ? no_point_temperatures : 0;
     for (unsigned int i = 0; i < targets.size(); ++i)
       if (targets[i]->size() > 0 && targets[i]->linfty_norm() > 0)
         mask |= 1u << i;
@@ -115,8 +122,9 @@ namespace anvil
           c.block.push_back(state.size());
           c.block.insert(c.block.end(), state.begin(), state.end());
         }
-      for (unsigned int q = 0; q < n_q; ++q)
-        c.block.push_back(material_temperature_old(cell, q));
+      if (!(mask & no_point_temperatures))
+        for (unsigned int q = 0; q < n_q; ++q)
+          c.block.push_back(material_temperature_old(cell, q));
       return c.block;
     };
     // A fully distributed triangulation (Geometry/Partition = per body) saves
@@ -199,11 +207,17 @@ namespace anvil
             k += size;
             points(cell, q)->load_state(state);
           }
-        for (unsigned int q = 0; q < n_q; ++q)
-          material_temperature_old(cell, q) = material_temperature(cell, q) = data.at(k++);
+        // Format 4 as session 21 wrote it carries them in every scene: read
+        // where this scene keeps them (its coupling is the checkpoint's).
+        if (!(mask & no_point_temperatures) && !material_temperature.empty())
+          for (unsigned int q = 0; q < n_q; ++q)
+            material_temperature_old(cell, q) = material_temperature(cell, q) = data.at(k++);
       });
     // A process without cells has read no mask.
     mask = Utilities::MPI::max(mask, mpi_communicator);
+    AssertThrow(!(mask & no_point_temperatures) || material_temperature.empty(),
+                ExcMessage("checkpoint: the points' temperatures were not saved, but this scene "
+                           "has a temperature field"));
     for (unsigned int i = 0; i < targets.size(); ++i)
       if (mask & (1u << i))
         {

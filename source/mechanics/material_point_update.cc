@@ -334,9 +334,12 @@ namespace anvil
           p.adiabatic = increment.adiabatic;
           p.w         = formulation.weight(ref, q, R);
           // Heat sources χẆirr + Ẇthel (eq. 20–22) and the temperature the point ends at.
-          (*context.heat_sources)(cell, q) =
-            response.plastic_dissipation_rate + response.thermoelastic_heating_rate;
-          (*context.thermoelastic_sources)(cell, q) = response.thermoelastic_heating_rate;
+          if (context.heat_sources)
+            {
+              (*context.heat_sources)(cell, q) =
+                response.plastic_dissipation_rate + response.thermoelastic_heating_rate;
+              (*context.thermoelastic_sources)(cell, q) = response.thermoelastic_heating_rate;
+            }
           if (heat)
             (*context.material_temperature)(cell, q) =
               increment.temperature +

@@ -243,6 +243,7 @@ namespace anvil
   {
     direct_solver.clear(); // a new pattern: analyse it again
     assembly_mapping->forget_local_indices(); // and new local row and column numbers
+    off_process_plan.reset();                 // and where the values sent land
     amg.clear();           // it references the matrix about to be re-created
     // Contact couples dofs of different cells (a slave node with the nodes of
     // the master face below it), possibly owned by other processes: their

@@ -28,7 +28,8 @@ namespace anvil
                                         const Epetra_BlockMap            &owned_map,
                                         const unsigned int                n_dofs,
                                         const bool                        dynamic,
-                                        const MPI_Comm                    comm)
+                                        const MPI_Comm                    comm,
+                                        OffProcessPlan                   &plan)
       : mapping(mapping)
       , constraints(constraints)
       , matrix(matrix)
@@ -38,9 +39,18 @@ namespace anvil
       , dynamic(dynamic)
       , comm(comm)
       , constrained_cells(mapping.constrained_cells(constraints.get_lines()))
+      , plan(plan)
     {
       AssertThrow(vectors[0] && vectors[1] && vectors[2] && (!dynamic || vectors[3]),
                   ExcInternalError());
+      // The rows of the last assembly stay (and the slots into them): their
+      // sums start again from nothing.
+      for (Row &r : plan.rows)
+        {
+          r.vectors = {};
+          for (auto &e : r.entries)
+            e.second = -0.;
+        }
     }
 
     template <int dim>
@@ -59,29 +69,75 @@ namespace anvil
     }
 
     template <int dim>
-    typename OffProcessRows<dim>::Row &OffProcessRows<dim>::remote_row(const Index row)
+    unsigned int OffProcessRows<dim>::remote_row(const Index row)
     {
-      const auto [at, added] = row_at.emplace(row, static_cast<unsigned int>(rows.size()));
+      const auto [at, added] = plan.row_at.emplace(row, static_cast<unsigned int>(plan.rows.size()));
       if (added)
-        rows.push_back(Row{static_cast<int>(row), {}, {}});
-      return rows[at->second];
+        {
+          plan.rows.push_back(Row{static_cast<int>(row), {}, {}});
+          ++plan.version;
+        }
+      return at->second;
+    }
+
+    template <int dim>
+    double &OffProcessRows<dim>::remote_entry(Row &row, const int c)
+    {
+      auto      &entries = row.entries;
+      const auto at      = std::lower_bound(entries.begin(), entries.end(), c,
+                                       [](const auto &e, const int c) { return e.first < c; });
+      if (at != entries.end() && at->first == c)
+        return at->second;
+      ++plan.version;
+      return entries.insert(at, {c, -0.})->second;
     }
 
     template <int dim>
     void OffProcessRows<dim>::add_remote(const Index row, const unsigned int n, const Index *cols,
                                          const double *values)
     {
-      auto &entries = remote_row(row).entries;
+      Row &r = plan.rows[remote_row(row)];
       for (unsigned int j = 0; j < n; ++j)
+        remote_entry(r, static_cast<int>(cols[j])) += values[j];
+    }
+
+    // Per row of the cell owned elsewhere, the pointers to its entries' sums
+    // (made first, then pointed to: making one may move a row's others).
+    // A new row or entry makes every cell's pointers stale: they are found
+    // again (the first assembly of a pattern; the next ones find all made).
+    template <int dim>
+    std::pair<double *const *, const unsigned int *> OffProcessRows<dim>::cell_slots(const CopyData &copy,
+                                                                                 const int *own)
+    {
+      if (plan.slots_version == plan.version)
+        if (const auto at = plan.cell_slots.find(copy.cell_index); at != plan.cell_slots.end())
+          return {plan.slots.data() + at->second.first, plan.slot_rows.data() + at->second.second};
+      const Index *const dofs = copy.dof_indices.data();
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        if (own[i] < 0)
+          {
+            Row &r = plan.rows[remote_row(dofs[i])];
+            for (unsigned int j = 0; j < n_dofs; ++j)
+              remote_entry(r, static_cast<int>(dofs[j]));
+          }
+      if (plan.slots_version != plan.version)
         {
-          const int  c  = static_cast<int>(cols[j]);
-          const auto at = std::lower_bound(entries.begin(), entries.end(), c,
-                                           [](const auto &e, const int c) { return e.first < c; });
-          if (at != entries.end() && at->first == c)
-            at->second += values[j];
-          else
-            entries.insert(at, {c, values[j]});
+          plan.cell_slots.clear();
+          plan.slots.clear();
+          plan.slot_rows.clear();
+          plan.slots_version = plan.version;
         }
+      const std::pair<std::size_t, std::size_t> offsets(plan.slots.size(), plan.slot_rows.size());
+      for (unsigned int i = 0; i < n_dofs; ++i)
+        if (own[i] < 0)
+          {
+            const unsigned int k = remote_row(dofs[i]);
+            plan.slot_rows.push_back(k);
+            for (unsigned int j = 0; j < n_dofs; ++j)
+              plan.slots.push_back(&remote_entry(plan.rows[k], static_cast<int>(dofs[j])));
+          }
+      plan.cell_slots[copy.cell_index] = offsets;
+      return {plan.slots.data() + offsets.first, plan.slot_rows.data() + offsets.second};
     }
 
     // As deal.II's SparseMatrix::add puts an owned row (its elide_zero_values
@@ -103,7 +159,7 @@ namespace anvil
     double &OffProcessRows<dim>::vector_entry(const unsigned int k, const Index row)
     {
       const int lid = owned_map.LID(static_cast<int>(row));
-      return lid >= 0 ? vectors[k][lid] : remote_row(row).vectors[k];
+      return lid >= 0 ? vectors[k][lid] : plan.rows[remote_row(row)].vectors[k];
     }
 
     template <int dim>
@@ -139,14 +195,14 @@ namespace anvil
     void OffProcessRows<dim>::add(const CopyData &copy)
     {
       // CellScatter::add's order: M a, K and −R, f_int, f_ext.
-      const auto add_vector = [&](const unsigned int k, const Vector<double> &local) {
-        for (unsigned int i = 0; i < n_dofs; ++i)
-          vector_entry(k, copy.dof_indices[i]) += local(i);
-      };
-      if (dynamic)
-        add_vector(3, copy.inertia);
       if (constrained_cells[copy.cell_index])
         {
+          const auto add_vector = [&](const unsigned int k, const Vector<double> &local) {
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              vector_entry(k, copy.dof_indices[i]) += local(i);
+          };
+          if (dynamic)
+            add_vector(3, copy.inertia);
           VectorTarget rhs{this, 0};
           if (matrix)
             {
@@ -155,10 +211,26 @@ namespace anvil
             }
           else
             constraints.distribute_local_to_global(copy.rhs, copy.dof_indices, rhs);
+          add_vector(1, copy.internal);
+          add_vector(2, copy.external);
         }
       else
         {
+          // Rows owned elsewhere by the plan's slots (no search per entry:
+          // 0.134 G instructions per assembly on the 3D 16³ block's busier
+          // rank), the rows' vector entries by their places in the plan.
           const int *const own = mapping.owned_vector_indices(copy.cell_index, n_dofs);
+          const auto [slots, slot_rows] = cell_slots(copy, own);
+          const auto add_vector = [&, slot_rows = slot_rows](const unsigned int k, const Vector<double> &local) {
+            unsigned int r = 0;
+            for (unsigned int i = 0; i < n_dofs; ++i)
+              if (own[i] >= 0)
+                vectors[k][own[i]] += local(i);
+              else
+                plan.rows[slot_rows[r++]].vectors[k] += local(i);
+          };
+          if (dynamic)
+            add_vector(3, copy.inertia);
           if (matrix)
             {
               // Owned rows by local row and column numbers (the cache
@@ -174,10 +246,15 @@ namespace anvil
                     local_rows[i] = matrix->LRID(g);
                     local_cols[i] = matrix->LCID(g);
                   }
-              const Index *const dofs = copy.dof_indices.data();
+              double *const *slot = slots;
               for (unsigned int i = 0; i < n_dofs; ++i)
                 if (own[i] < 0)
-                  add_remote(dofs[i], n_dofs, dofs, &copy.matrix(i, 0));
+                  {
+                    const double *const K = &copy.matrix(i, 0);
+                    for (unsigned int j = 0; j < n_dofs; ++j)
+                      *slot[j] += K[j];
+                    slot += n_dofs;
+                  }
                 else
                   {
                     AssertThrow(local_rows[i] >= 0, ExcInternalError());
@@ -188,9 +265,9 @@ namespace anvil
                   }
             }
           add_vector(0, copy.rhs);
+          add_vector(1, copy.internal);
+          add_vector(2, copy.external);
         }
-      add_vector(1, copy.internal);
-      add_vector(2, copy.external);
     }
 
     template <int dim>
@@ -205,10 +282,12 @@ namespace anvil
       int ierr = MPI_Allgather(range, 2, MPI_INT, ranges.data(), 2, MPI_INT, comm);
       AssertThrowMPI(ierr);
 
-      // Per row: row, n, the four vector entries, then n (column, value)
-      // pairs, all as doubles (indices < 2^31 are exact).
+      // Per process: the plan's version (OffProcessPlan: which rows and
+      // entries, in which order), then per row: row, n, the four vector
+      // entries, then n (column, value) pairs, all as doubles (indices and
+      // versions < 2^31 are exact). Without the matrix no entries are sent.
       std::vector<std::vector<double>> send(P);
-      for (const Row &r : rows)
+      for (const Row &r : plan.rows)
         {
           unsigned int p = 0;
           while (p < P && !(ranges[2 * p] <= r.row && r.row < ranges[2 * p + 1]))
@@ -216,13 +295,16 @@ namespace anvil
           AssertThrow(p < P, ExcMessage("OffProcessRows: row " + std::to_string(r.row) +
                                         " owned by no process"));
           auto &s = send[p];
+          if (s.empty())
+            s.push_back(plan.version);
+          const std::size_t n = matrix ? r.entries.size() : 0;
           s.push_back(r.row);
-          s.push_back(static_cast<double>(r.entries.size()));
+          s.push_back(static_cast<double>(n));
           s.insert(s.end(), r.vectors.begin(), r.vectors.end());
-          for (const auto &[c, v] : r.entries)
+          for (std::size_t j = 0; j < n; ++j)
             {
-              s.push_back(c);
-              s.push_back(v);
+              s.push_back(r.entries[j].first);
+              s.push_back(r.entries[j].second);
             }
         }
       std::vector<int> send_counts(P), receive_counts(P), send_offsets(P + 1, 0),
@@ -245,36 +327,113 @@ namespace anvil
       AssertThrowMPI(ierr);
 
       // Added in the senders' order of processes, each row as it was sent.
-      std::vector<double> values;
-      for (std::size_t i = 0; i < received.size();)
+      if (plan.received_version.size() != P)
         {
-          const int          row = static_cast<int>(received[i]);
-          const unsigned int n   = static_cast<unsigned int>(received[i + 1]);
-          const int          lid = owned_map.LID(row);
-          AssertThrow(lid >= 0, ExcMessage("OffProcessRows: received row " + std::to_string(row) +
-                                           " not owned here"));
+          plan.received_version.assign(P, 0);
+          plan.received_positions.assign(P, {});
+        }
+      for (unsigned int p = 0; p < P; ++p)
+        if (receive_counts[p] > 0)
+          add_received(p, static_cast<unsigned int>(received[receive_offsets[p]]),
+                       received.data() + receive_offsets[p] + 1, received.data() + receive_offsets[p + 1]);
+    }
+
+    // A sender's rows: by the positions found when its plan last changed
+    // (per row its local row and entry count, then each entry's index in the
+    // CRS values), else by global look-ups, finding them (with the matrix).
+    // Each entry gets one addition, as SumIntoGlobalValues would make it.
+    template <int dim>
+    void OffProcessRows<dim>::add_received(const unsigned int sender, const unsigned int version,
+                                           const double *begin, const double *end)
+    {
+      int    *row_start = nullptr, *row_columns = nullptr;
+      double *values    = nullptr;
+      if (matrix && matrix->ExtractCrsDataPointers(row_start, row_columns, values) != 0)
+        values = nullptr; // storage not optimised: by global look-ups
+      std::vector<int> &positions = plan.received_positions[sender];
+      const bool known = plan.received_version[sender] == version && !positions.empty();
+      const bool find  = !known && values;
+      if (find)
+        positions.clear();
+      std::size_t q = 0;
+      for (const double *at = begin; at < end;)
+        {
+          const int          row = static_cast<int>(at[0]);
+          const unsigned int n   = static_cast<unsigned int>(at[1]);
+          int                lid;
+          if (known)
+            {
+              lid = positions[q];
+              AssertThrow(static_cast<unsigned int>(positions[q + 1]) == n || n == 0,
+                          ExcInternalError());
+            }
+          else
+            {
+              lid = owned_map.LID(row);
+              AssertThrow(lid >= 0, ExcMessage("OffProcessRows: received row " + std::to_string(row) +
+                                               " not owned here"));
+            }
           for (unsigned int k = 0; k < 4; ++k)
             if (vectors[k])
-              vectors[k][lid] += received[i + 2 + k];
-          i += 6;
-          if (matrix && n > 0)
+              vectors[k][lid] += at[2 + k];
+          const double *entry = at + 6;
+          at += 6 + 2 * std::size_t(n);
+          if (known)
             {
-              columns.resize(n);
-              values.resize(n);
+              const unsigned int count = static_cast<unsigned int>(positions[q + 1]);
+              if (n > 0)
+                for (unsigned int j = 0; j < n; ++j)
+                  values[positions[q + 2 + j]] += entry[2 * j + 1];
+              q += 2 + count;
+              continue;
+            }
+          if (find)
+            {
+              positions.push_back(lid);
+              positions.push_back(static_cast<int>(n));
+            }
+          if (!matrix || n == 0)
+            continue;
+          if (find)
+            {
+              const int *const row_begin = row_columns + row_start[lid];
+              const int *const row_end   = row_columns + row_start[lid + 1];
               for (unsigned int j = 0; j < n; ++j)
                 {
-                  columns[j] = static_cast<int>(received[i + 2 * j]);
-                  values[j]  = received[i + 2 * j + 1];
+                  const int *const c =
+                    std::find(row_begin, row_end, matrix->LCID(static_cast<int>(entry[2 * j])));
+                  AssertThrow(c != row_end, ExcMessage("OffProcessRows: a received entry outside the "
+                                                       "matrix's pattern"));
+                  const int position = static_cast<int>(c - row_columns);
+                  positions.push_back(position);
+                  values[position] += entry[2 * j + 1];
                 }
-              ierr = matrix->Epetra_CrsMatrix::SumIntoGlobalValues(row, static_cast<int>(n),
-                                                                   values.data(), columns.data());
-              AssertThrow(ierr == 0, ExcMessage("OffProcessRows: a received entry outside the "
-                                                "matrix's pattern (" + std::to_string(ierr) + ")"));
+              continue;
             }
-          i += 2 * std::size_t(n);
+          columns.resize(n);
+          std::vector<double> row_values(n);
+          for (unsigned int j = 0; j < n; ++j)
+            {
+              columns[j]    = static_cast<int>(entry[2 * j]);
+              row_values[j] = entry[2 * j + 1];
+            }
+          const int ierr = matrix->Epetra_CrsMatrix::SumIntoGlobalValues(row, static_cast<int>(n),
+                                                                         row_values.data(), columns.data());
+          AssertThrow(ierr == 0, ExcMessage("OffProcessRows: a received entry outside the "
+                                            "matrix's pattern (" + std::to_string(ierr) + ")"));
         }
-      rows.clear();
-      row_at.clear();
+      // Positions found without the matrix's entries (a residual first)
+      // would not serve an assembly with them.
+      if (find)
+        {
+          bool with_entries = false;
+          for (std::size_t k = 0; k < positions.size(); k += 2 + positions[k + 1])
+            with_entries = with_entries || positions[k + 1] > 0;
+          if (with_entries)
+            plan.received_version[sender] = version;
+          else
+            positions.clear();
+        }
     }
 
     ANVIL_INSTANTIATE_CLASS(OffProcessRows)

@@ -37,6 +37,44 @@ namespace anvil
      * deal.II. The four vectors (−R, f_int, f_ext, M a) get only owned
      * entries, by local index.
      */
+    /**
+     * What OffProcessRows keeps while the matrix's pattern stays
+     * (MechanicalProblem::off_process_plan, reset by setup_matrix()): the
+     * rows owned elsewhere with their entries, where each interface cell's
+     * entries are summed (sender), and where each value received lands in
+     * the owned CRS storage (owner). The first assembly of a pattern finds
+     * them by searching; the next ones add by position.
+     */
+    struct OffProcessPlan
+    {
+      using Index = dealii::types::global_dof_index;
+      struct Row
+      {
+        int                                 row;
+        std::vector<std::pair<int, double>> entries; // by column, sorted
+        std::array<double, 4>               vectors{};
+      };
+      std::vector<Row>                        rows;
+      std::unordered_map<Index, unsigned int> row_at;
+      /// Changes when a row or an entry is added (the pointers below are then stale).
+      unsigned int version = 1;
+
+      /// Sender: per cell with rows owned elsewhere (active cell index), its
+      /// offset into slots (per such row in the cell's order, the pointers to
+      /// its n_dofs entries' sums, by the cell's column order) and into
+      /// slot_rows (those rows' places in rows). Valid for slots_version.
+      std::unordered_map<unsigned int, std::pair<std::size_t, std::size_t>> cell_slots;
+      std::vector<double *>     slots;
+      std::vector<unsigned int> slot_rows;
+      unsigned int              slots_version = 0;
+
+      /// Owner: per sending process, the sender's version its positions
+      /// were found for, and per row received its local row then per entry
+      /// its index in the CRS values.
+      std::vector<unsigned int>     received_version;
+      std::vector<std::vector<int>> received_positions;
+    };
+
     template <int dim>
     class OffProcessRows
     {
@@ -51,7 +89,8 @@ namespace anvil
                      const Epetra_BlockMap            &owned_map,
                      unsigned int                      n_dofs,
                      bool                              dynamic,
-                     MPI_Comm                          comm);
+                     MPI_Comm                          comm,
+                     OffProcessPlan                   &plan);
 
       /// Whether @p copy is this object's (a dof owned elsewhere, or constrained).
       bool takes(const CopyData &copy) const;
@@ -60,7 +99,7 @@ namespace anvil
       void exchange();
 
       /// Number of rows owned elsewhere this assembly touched (a test's figure).
-      std::size_t n_rows() const { return rows.size(); }
+      std::size_t n_rows() const { return plan.rows.size(); }
 
       // The targets deal.II's AffineConstraints writes into (its templates
       // call add() and operator() on them).
@@ -94,17 +133,19 @@ namespace anvil
 
     private:
       using Index = dealii::types::global_dof_index;
-      struct Row
-      {
-        int                               row;
-        std::vector<std::pair<int, double>> entries; // by column, sorted
-        std::array<double, 4>             vectors{};
-      };
+      using Row   = OffProcessPlan::Row;
 
-      Row    &remote_row(Index row);
+      unsigned int remote_row(Index row);
+      /// The entry (row, column)'s sum, made (−0: the sum of nothing, so
+      /// that adding to it gives the value's bits) if new.
+      double &remote_entry(Row &row, int column);
       void    add_remote(Index row, unsigned int n, const Index *columns, const double *values);
       void    add_owned(int local_row, Index row, unsigned int n, const Index *columns, const double *values);
       double &vector_entry(unsigned int k, Index row);
+      /// The cell's slots and remote rows (OffProcessPlan::cell_slots), found on first use.
+      std::pair<double *const *, const unsigned int *> cell_slots(const CopyData &copy, const int *own);
+      /// The received rows added (by the positions found for @p sender's version, else by searching).
+      void add_received(unsigned int sender, unsigned int version, const double *begin, const double *end);
 
       const AssemblyMapping<dim>              &mapping;
       const dealii::AffineConstraints<double> &constraints;
@@ -115,8 +156,7 @@ namespace anvil
       const bool                               dynamic;
       const MPI_Comm                           comm;
       signed char                             *constrained_cells;
-      std::vector<Row>                         rows;
-      std::unordered_map<Index, unsigned int>  row_at;
+      OffProcessPlan                          &plan;
       std::vector<int>                         columns; // work space
     };
   } // namespace MechanicsAssembly

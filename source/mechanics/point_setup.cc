@@ -1,6 +1,7 @@
 // The material points of the mechanics and the per-point data beside them:
 // a block per body from its law (MaterialModel::create_points), the table of
-// pointers into the blocks in cell order (PointData).
+// pointers into the blocks in cell order (PointData), and the heat's
+// per-point doubles where a coupling reads them.
 #include <anvil/core/input_error.h>
 #include <anvil/core/instantiate.h>
 #include <anvil/mechanics/element_formulation.h>
@@ -19,8 +20,18 @@ namespace anvil
     const unsigned int n_q = quadrature.size();
     points.reinit(triangulation, n_q, nullptr);
     point_blocks.clear();
-    heat_sources.reinit(triangulation, n_q, 0.);
-    thermoelastic_sources.reinit(triangulation, n_q, 0.);
+    // The heat equation's sources and the points' own temperatures only
+    // where something reads them (keep_heat_sources(), a temperature field):
+    // 4 doubles a point, 74 B/DoF of the 3D plastic block's 3.75 KB
+    // (doc/memory.md, session 22). Ẇirr stays: the audit's heat plastic work
+    // reads it at commit in every scene.
+    heat_sources          = PointData<double>();
+    thermoelastic_sources = PointData<double>();
+    if (heat_sources_kept)
+      {
+        heat_sources.reinit(triangulation, n_q, 0.);
+        thermoelastic_sources.reinit(triangulation, n_q, 0.);
+      }
     plastic_work_rates.reinit(triangulation, n_q, 0.);
     if (parameters.dynamic)
       node_masses.reinit(triangulation, formulation->n_nodes * formulation->n_nodes,
@@ -35,9 +46,55 @@ namespace anvil
       step_start.reinit(triangulation, fe.n_dofs_per_cell(), n_q);
     else
       step_start = MechanicsAssembly::StepStart();
-    material_temperature.reinit(triangulation, n_q, parameters.temperature);
-    material_temperature_old = material_temperature;
+    material_temperature = material_temperature_old = PointData<double>();
+    if (temperature_field)
+      {
+        material_temperature.reinit(triangulation, n_q, parameters.temperature);
+        material_temperature_old = material_temperature;
+      }
     make_points(point_options);
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::set_temperature_field(const TemperatureField &field, const bool adiabatic)
+  {
+    temperature_field = field;
+    adiabatic_split   = adiabatic;
+    if (temperature_field && material_temperature.empty() && !points.empty())
+      {
+        material_temperature.reinit(triangulation, quadrature.size(), parameters.temperature);
+        material_temperature_old = material_temperature;
+      }
+    if (adiabatic != point_options.adiabatic)
+      make_points({adiabatic});
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::set_initial_point_temperatures(const std::vector<double> &T)
+  {
+    material_temperature.raw()     = T;
+    material_temperature_old.raw() = T;
+  }
+
+  template <int dim>
+  void MechanicalProblem<dim>::keep_heat_sources()
+  {
+    heat_sources_kept = true;
+    if (heat_sources.empty() && !points.empty())
+      {
+        heat_sources.reinit(triangulation, quadrature.size(), 0.);
+        thermoelastic_sources.reinit(triangulation, quadrature.size(), 0.);
+      }
+  }
+
+  template <int dim>
+  unsigned int MechanicalProblem<dim>::n_point_doubles() const
+  {
+    unsigned int n = 0;
+    for (const auto *d : {&heat_sources, &thermoelastic_sources, &plastic_work_rates, &material_temperature,
+                          &material_temperature_old})
+      n += d->empty() ? 0 : 1;
+    return n;
   }
 
   template <int dim>
@@ -86,7 +143,11 @@ namespace anvil
 
 #define INSTANTIATE(dim)                                                          \
   template void MechanicalProblem<dim>::setup_quadrature_point_data();           \
-  template void MechanicalProblem<dim>::make_points(const PointOptions &);
+  template void MechanicalProblem<dim>::make_points(const PointOptions &);                 \
+  template void MechanicalProblem<dim>::set_temperature_field(const MechanicalProblem<dim>::TemperatureField &, bool); \
+  template void MechanicalProblem<dim>::set_initial_point_temperatures(const std::vector<double> &); \
+  template void MechanicalProblem<dim>::keep_heat_sources();                            \
+  template unsigned int MechanicalProblem<dim>::n_point_doubles() const;
   ANVIL_INSTANTIATE(INSTANTIATE)
 #undef INSTANTIATE
 } // namespace anvil

@@ -95,7 +95,7 @@ namespace anvil
       double       linear_tolerance             = 1e-10;
       unsigned int linear_max_iterations        = 1000;
       unsigned int gmres_restart                = default_gmres_restart; // Krylov basis before a restart
-      std::string  preconditioner               = "AMG"; // AMG | geometric (geometric_coarse_space.h)
+      std::string  preconditioner               = "automatic"; // automatic | AMG | geometric (linear_solver.cc)
       double       amg_rebuild_growth           = 0;
       // AMG (linear_solver.h): 0 / "automatic" chosen per solve in solve_linear_system().
       unsigned int amg_smoother_degree          = 0;     // Chebyshev degree
@@ -220,20 +220,21 @@ namespace anvil
      * with @p adiabatic, the Armero–Simo split, the point adds its own
      * adiabatic heating ΔT_ad of the step, which it then remembers too).
      */
-    void set_temperature_field(const TemperatureField &field, bool adiabatic)
-    {
-      temperature_field = field;
-      adiabatic_split   = adiabatic;
-      if (adiabatic != point_options.adiabatic)
-        make_points({adiabatic});
-    }
+    void set_temperature_field(const TemperatureField &field, bool adiabatic);
     /// The temperature every point starts from (heat scenes), per point in
     /// PointData order (cell by active cell index, then quadrature point).
-    void set_initial_point_temperatures(const std::vector<double> &T)
-    {
-      material_temperature.raw()     = T;
-      material_temperature_old.raw() = T;
-    }
+    void set_initial_point_temperatures(const std::vector<double> &T);
+    /**
+     * The heat equation reads heat_source() and thermoelastic_source(): the
+     * assembly keeps them from now on. Without it (and without a
+     * temperature field) the points' heat doubles are not kept at all
+     * (point_setup.cc): a scene pays only for the physics it switched on.
+     */
+    void keep_heat_sources();
+    /// Doubles kept per quadrature point beside the points (heat sources,
+    /// temperatures, Ẇirr): 5 in a coupled scene, 1 (the audit's Ẇirr) in a
+    /// purely mechanical one (a test's figure).
+    unsigned int n_point_doubles() const;
     /// χẆirr + Ẇthel of the last assembly at quadrature point q of a cell (MPa/s = mW/mm³).
     double heat_source(const typename dealii::Triangulation<dim>::active_cell_iterator &cell,
                        unsigned int q) const
@@ -444,14 +445,17 @@ namespace anvil
     std::vector<std::vector<dealii::types::global_dof_index>> cell_pattern;
     /// Lines for contact-surface dofs that this process does not see but their owner constrains.
     void add_remote_constraints(dealii::AffineConstraints<double> &c) const;
-    PointData<double>                           heat_sources; // per point, last assembly
+    /// Per point, last assembly; empty unless keep_heat_sources().
+    PointData<double>                           heat_sources;
     PointData<double>                           thermoelastic_sources;
     PointData<double>                           plastic_work_rates; // Ẇirr per point, last assembly
     PointData<double>                           node_masses; // dynamics: per cell (Context::node_masses)
     MechanicsAssembly::StepStart                step_start; // F_n, F̄_n per point (Context::step_start)
     TemperatureField                            temperature_field;
     bool                                        adiabatic_split = false;
-    // The temperature each point ended its last update at (current and committed).
+    bool                                        heat_sources_kept = false; // keep_heat_sources()
+    // The temperature each point ended its last update at (current and
+    // committed); empty without a temperature field (the uniform one is read).
     PointData<double>                           material_temperature, material_temperature_old;
     double max_plastic_increment = 0;
     /// The step's audit sums over the points (MechanicsAssembly::CopyData::audit).
@@ -502,6 +506,9 @@ namespace anvil
     /// after the mapping and the element it points to, so destroyed first.
     std::shared_ptr<MechanicsAssembly::ScratchData<dim>> kept_scratch;
     std::shared_ptr<MechanicsAssembly::CopyData>         kept_copy;
+    /// What OffProcessRows keeps per matrix pattern (off_process_rows.h):
+    /// where each value sent lands in its owner's rows. Reset with the matrix.
+    std::shared_ptr<void>                                off_process_plan;
     /// Work vectors of the owned layout kept between steps (a Trilinos vector
     /// constructed as a copy costs ~47 000 instructions on the tube: its
     /// Epetra_FEVector and map): Newton's increment, the line search's start,
