@@ -114,9 +114,13 @@ namespace anvil
                       "gmsh meshes, curved or distorted cells), or one unrefined block of equal cells "
                       "with even subdivisions; another mesh is refused. "
                       // s22-levels: the sentence on automatic levels goes here.
-                      "automatic: geometric in 3D where it applies, else AMG (2D, Q2, an unrefined "
-                      "mesh, or AMG package = MueLu, AMG rebuild growth > 0). MEASURED "
-                      "(doc/linear_solver.md, session 22).");
+                      "automatic: geometric in 3D where it applies, else AMG (2D, Q2, a mesh without a "
+                      "coarser level, AMG package = MueLu, AMG rebuild growth > 0); the log names the "
+                      "choice. On every 3D scene shipped or tested, above the direct solver's limit, "
+                      "geometric took 1-51 % less CPU and 5-53 % less peak memory than AMG (plastic "
+                      "F-bar block 30^3: 128 -> 96 CPU s, 9393 -> 4636 B/DoF, 20.8 -> 26.6 Krylov "
+                      "iterations per solve); in 2D its Krylov count grows with the mesh (plastic "
+                      "block 256^2: 50.2 against 29.5, +38 % CPU). doc/linear_solver.md, session 22.");
     prm.declare_entry("AMG rebuild growth", "0", Patterns::Double(0),
                       "0: build the AMG hierarchy for every solve. g > 0: keep it across Newton "
                       "iterations and steps, giving the kept one g times the Krylov iterations of "
