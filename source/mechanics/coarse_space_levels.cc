@@ -201,9 +201,9 @@ namespace anvil
       mine = std::vector<int>();
       std::map<NodeKey, int> published;
       for (std::size_t k = 0; k + 7 <= all.size(); k += 7)
-        published[{static_cast<unsigned int>(all[k]), static_cast<unsigned int>(all[k + 1]),
-                   static_cast<unsigned int>(all[k + 2]), static_cast<unsigned int>(all[k + 3]),
-                   static_cast<unsigned int>(all[k + 4]), static_cast<unsigned int>(all[k + 5])}] = all[k + 6];
+        published[NodeKey{{static_cast<unsigned int>(all[k]), static_cast<unsigned int>(all[k + 1]),
+                           static_cast<unsigned int>(all[k + 2]), static_cast<unsigned int>(all[k + 3]),
+                           static_cast<unsigned int>(all[k + 4]), static_cast<unsigned int>(all[k + 5])}}] = all[k + 6];
       all = std::vector<int>();
 
       // This level's dof of each owned fine dof at its nodes.
@@ -259,7 +259,7 @@ namespace anvil
                             const unsigned int j = fe.component_to_system_index(c, w);
                             if (R(i, j) == 0)
                               continue;
-                            const auto it = published.find({key[0], key[1], key[2], key[3], w, c});
+                            const auto it = published.find(NodeKey{{key[0], key[1], key[2], key[3], w, c}});
                             AssertThrow(it != published.end(),
                                         ExcMessage("geometric coarse space: a grandparent's vertex without a coarse dof"));
                             if (it->second >= 0)
