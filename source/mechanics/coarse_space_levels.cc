@@ -112,6 +112,25 @@ namespace anvil
     /// (ancestor's CellId, its vertex, component) → the coarse dof there (−k − 2: constrained).
     using NodeKey = std::array<unsigned int, 6>;
 
+    /// Every process's (key, corner, component, id) records (7 ints each), as one map.
+    std::map<NodeKey, int> gather(const std::vector<int> &mine, const MPI_Comm comm)
+    {
+      const int        n_here = mine.size();
+      const unsigned   np     = Utilities::MPI::n_mpi_processes(comm);
+      std::vector<int> counts(np), offsets(np + 1, 0);
+      AssertThrowMPI(MPI_Allgather(&n_here, 1, MPI_INT, counts.data(), 1, MPI_INT, comm));
+      for (unsigned int p = 0; p < np; ++p)
+        offsets[p + 1] = offsets[p] + counts[p];
+      std::vector<int> all(offsets[np]);
+      AssertThrowMPI(MPI_Allgatherv(mine.data(), n_here, MPI_INT, all.data(), counts.data(), offsets.data(), MPI_INT, comm));
+      std::map<NodeKey, int> published;
+      for (std::size_t k = 0; k + 7 <= all.size(); k += 7)
+        published[NodeKey{{static_cast<unsigned int>(all[k]), static_cast<unsigned int>(all[k + 1]),
+                           static_cast<unsigned int>(all[k + 2]), static_cast<unsigned int>(all[k + 3]),
+                           static_cast<unsigned int>(all[k + 4]), static_cast<unsigned int>(all[k + 5])}}] = all[k + 6];
+      return published;
+    }
+
     /**
      * Hierarchy path: the next space's nodes are the vertices of the cells'
      * ancestors depth + 1 generations up; a coarse dof is the fine dof there
@@ -190,21 +209,8 @@ namespace anvil
                     mine.push_back(static_cast<int>(id_of(cell->vertex_dof_index(v, c))));
                   }
               }
-      const int        n_here = mine.size();
-      const unsigned   np     = Utilities::MPI::n_mpi_processes(comm);
-      std::vector<int> counts(np), offsets(np + 1, 0);
-      AssertThrowMPI(MPI_Allgather(&n_here, 1, MPI_INT, counts.data(), 1, MPI_INT, comm));
-      for (unsigned int p = 0; p < np; ++p)
-        offsets[p + 1] = offsets[p] + counts[p];
-      std::vector<int> all(offsets[np]);
-      AssertThrowMPI(MPI_Allgatherv(mine.data(), n_here, MPI_INT, all.data(), counts.data(), offsets.data(), MPI_INT, comm));
-      mine = std::vector<int>();
-      std::map<NodeKey, int> published;
-      for (std::size_t k = 0; k + 7 <= all.size(); k += 7)
-        published[{static_cast<unsigned int>(all[k]), static_cast<unsigned int>(all[k + 1]),
-                   static_cast<unsigned int>(all[k + 2]), static_cast<unsigned int>(all[k + 3]),
-                   static_cast<unsigned int>(all[k + 4]), static_cast<unsigned int>(all[k + 5])}] = all[k + 6];
-      all = std::vector<int>();
+      const std::map<NodeKey, int> published = gather(mine, comm);
+      mine                                   = std::vector<int>();
 
       // This level's dof of each owned fine dof at its nodes.
       std::vector<int> level_dof(rows.NumMyElements(), -1);
@@ -259,7 +265,7 @@ namespace anvil
                             const unsigned int j = fe.component_to_system_index(c, w);
                             if (R(i, j) == 0)
                               continue;
-                            const auto it = published.find({key[0], key[1], key[2], key[3], w, c});
+                            const auto it = published.find(NodeKey{{key[0], key[1], key[2], key[3], w, c}});
                             AssertThrow(it != published.end(),
                                         ExcMessage("geometric coarse space: a grandparent's vertex without a coarse dof"));
                             if (it->second >= 0)

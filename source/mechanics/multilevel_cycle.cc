@@ -8,6 +8,8 @@
 
 #include "geometric_coarse_space.h"
 
+#include <cstdlib>
+
 DEAL_II_DISABLE_EXTRA_DIAGNOSTICS
 #include <Epetra_CrsMatrix.h>
 #include <Epetra_Map.h>
@@ -113,6 +115,17 @@ namespace anvil
       {
         level.P->Multiply(true, *level.r, rc.trilinos_vector());
         coarse_amg->vmult(ec, rc);
+        // Benchmarks: ANVIL_GMG_COARSE_CYCLES=k applies ML k times (a fixed, linear iteration).
+        static const int coarse_cycles =
+          std::getenv("ANVIL_GMG_COARSE_CYCLES") ? std::atoi(std::getenv("ANVIL_GMG_COARSE_CYCLES")) : 1;
+        for (int k = 1; k < coarse_cycles; ++k)
+          {
+            TrilinosWrappers::MPI::Vector residual(rc), correction(rc);
+            coarse_matrix.vmult(residual, ec);
+            residual.sadd(-1., 1., rc);
+            coarse_amg->vmult(correction, residual);
+            ec += correction;
+          }
         level.P->Multiply(false, ec.trilinos_vector(), *level.t);
       }
     else
