@@ -189,8 +189,10 @@ def main():
         REFINED = int(args[args.index("--refinements") + 1])
     if REFINED:
         tag = "_".join(t for t in (tag, "refined" + (str(REFINED) if REFINED > 1 else "")) if t)
+    # Always explicit: since session 22 the entry's default (automatic) picks
+    # geometric on the 3D blocks, and "AMG" runs must stay AMG.
+    extra.append("Mechanics/Linear solver/Preconditioner=" + preconditioner)
     if preconditioner != "AMG":
-        extra.append("Mechanics/Linear solver/Preconditioner=" + preconditioner)
         tag = "_".join(t for t in (preconditioner, tag) if t)
     sizes = {"2d": [64, 128, 256] + ([512] if large else []), "3d": [6, 8, 10, 12, 20, 30] + ([40, 69] if large else []),
              "strip": [1000, 4000, 16000]}

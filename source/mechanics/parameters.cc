@@ -107,13 +107,17 @@ namespace anvil
     // the figures: doc/linear_solver.md, "Session 22: the default".
     prm.declare_entry("Preconditioner", "automatic", Patterns::Selection("automatic|AMG|geometric"),
                       "The iterative solver's preconditioner. AMG: smoothed-aggregation algebraic "
-                      "multigrid (the AMG entries below). geometric: two levels, Chebyshev on the mesh "
-                      "and a coarse correction on the Q1 space of the mesh one refinement coarser "
-                      "(Galerkin product, solved by one ML V-cycle with the AMG entries below); Q1 only, "
+                      "multigrid (the AMG entries below). geometric: Chebyshev on the mesh and a coarse "
+                      "correction on the Q1 space of the mesh one refinement coarser (Galerkin product, "
+                      "itself smoothed and corrected the same way, one ML V-cycle with the AMG entries "
+                      "below on the coarsest level); Q1 only, "
                       "on a mesh with a coarser level: Geometry/Global refinements >= 1 (any bodies, "
                       "gmsh meshes, curved or distorted cells), or one unrefined block of equal cells "
                       "with even subdivisions; another mesh is refused. "
-                      // s22-levels: the sentence on automatic levels goes here.
+                      "The number of levels is automatic: each coarse level of at least 14 000 rows is "
+                      "coarsened once more while the mesh allows it (another generation of parents, or "
+                      "even subdivisions of one unrefined block): 1 M DoFs get three levels, up to 30^3 "
+                      "cells two. "
                       "automatic: geometric in 3D where it applies, else AMG (2D, Q2, a mesh without a "
                       "coarser level, AMG package = MueLu, AMG rebuild growth > 0); the log names the "
                       "choice. On every 3D scene shipped or tested, above the direct solver's limit, "
