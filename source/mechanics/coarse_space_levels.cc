@@ -161,28 +161,12 @@ namespace anvil
               for (unsigned int c = 0; c < dim; ++c)
                 if (owned.is_element(cell->vertex_dof_index(v, c)))
                   nodes.push_back(cell->vertex_dof_index(v, c));
-      std::sort(nodes.begin(), nodes.end());
-      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+      auto next                 = std::make_unique<CoarseSpace>();
+      next->depth               = depth + 1;
+      const unsigned int first  = coarse_space_internal::number_coarse_nodes(nodes, comm, rows, *next);
       const unsigned int n_mine = nodes.size();
-      unsigned int       first  = 0;
-      const int          ierr   = MPI_Exscan(&n_mine, &first, 1, MPI_UNSIGNED, MPI_SUM, comm);
-      AssertThrowMPI(ierr);
-      if (Utilities::MPI::this_mpi_process(comm) == 0)
-        first = 0; // MPI_Exscan leaves rank 0's undefined
-
-      auto next           = std::make_unique<CoarseSpace>();
-      next->depth         = depth + 1;
-      next->n_coarse_dofs = Utilities::MPI::sum(n_mine, comm);
-      {
-        std::vector<int> gids(n_mine);
-        for (unsigned int i = 0; i < n_mine; ++i)
-          {
-            gids[i] = first + i;
-            next->fine_nodes.emplace_back(rows.LID(static_cast<int>(nodes[i])), first + i);
-          }
-        next->coarse_map = std::make_unique<Epetra_Map>(static_cast<int>(next->n_coarse_dofs),
-                                                        static_cast<int>(n_mine), gids.data(), 0, rows.Comm());
-      }
+      for (unsigned int i = 0; i < n_mine; ++i)
+        next->fine_nodes.emplace_back(rows.LID(static_cast<int>(nodes[i])), first + i);
       // The signed id of an owned fine dof at a node, −1 elsewhere.
       const auto id_of = [&](const types::global_dof_index dof) -> long long {
         const auto it = std::lower_bound(nodes.begin(), nodes.end(), dof);

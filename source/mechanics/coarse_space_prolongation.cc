@@ -191,24 +191,9 @@ namespace anvil
               if (owned.is_element(cell->vertex_dof_index(k, c)))
                 nodes.push_back(cell->vertex_dof_index(k, c));
           }
-      std::sort(nodes.begin(), nodes.end());
-      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+      CoarseSpace        space;
+      const unsigned int first  = coarse_space_internal::number_coarse_nodes(nodes, comm, rows, space);
       const unsigned int n_mine = nodes.size();
-      unsigned int       first  = 0;
-      const int          ierr   = MPI_Exscan(&n_mine, &first, 1, MPI_UNSIGNED, MPI_SUM, comm);
-      AssertThrowMPI(ierr);
-      if (Utilities::MPI::this_mpi_process(comm) == 0)
-        first = 0; // MPI_Exscan leaves rank 0's undefined
-
-      CoarseSpace space;
-      space.n_coarse_dofs = Utilities::MPI::sum(n_mine, comm);
-      {
-        std::vector<int> gids(n_mine);
-        for (unsigned int i = 0; i < n_mine; ++i)
-          gids[i] = first + i;
-        space.coarse_map = std::make_unique<Epetra_Map>(static_cast<int>(space.n_coarse_dofs),
-                                                        static_cast<int>(n_mine), gids.data(), 0, A.Comm());
-      }
 
       // Each fine dof's coarse dof k where it sits on a parent vertex: k free,
       // −k − 2 constrained, −1 elsewhere (exact in double); ghosts included.
@@ -387,6 +372,27 @@ namespace anvil
       return space;
     }
   } // namespace coarse_space_internal
+
+  unsigned int coarse_space_internal::number_coarse_nodes(std::vector<types::global_dof_index> &nodes,
+                                                          const MPI_Comm comm, const Epetra_Map &rows,
+                                                          CoarseSpace &space)
+  {
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    const unsigned int n_mine = nodes.size();
+    unsigned int       first  = 0;
+    const int          ierr   = MPI_Exscan(&n_mine, &first, 1, MPI_UNSIGNED, MPI_SUM, comm);
+    AssertThrowMPI(ierr);
+    if (Utilities::MPI::this_mpi_process(comm) == 0)
+      first = 0; // MPI_Exscan leaves rank 0's undefined
+    space.n_coarse_dofs = Utilities::MPI::sum(n_mine, comm);
+    std::vector<int> gids(n_mine);
+    for (unsigned int i = 0; i < n_mine; ++i)
+      gids[i] = first + i;
+    space.coarse_map = std::make_unique<Epetra_Map>(static_cast<int>(space.n_coarse_dofs), static_cast<int>(n_mine),
+                                                    gids.data(), 0, rows.Comm());
+    return first;
+  }
 
   template <int dim>
   void check_geometric_coarse_space(const DoFHandler<dim> &dof_handler)

@@ -109,6 +109,13 @@ namespace anvil
     template <int dim>
     CoarseSpace coarsen_box(const std::vector<GridDof<dim>> &fine, const std::array<unsigned int, dim> &cells,
                             const Epetra_Map &rows, const Epetra_Map &range);
+
+    /// Sorts and deduplicates @p nodes (owned fine dofs at the coarse
+    /// nodes) and numbers them after the lower processes' (collective): the
+    /// first coarse dof of this process; @p space gets n_coarse_dofs and the
+    /// coarse map (coarse dof first + i for nodes[i]). Both hierarchy paths'.
+    unsigned int number_coarse_nodes(std::vector<dealii::types::global_dof_index> &nodes, MPI_Comm comm,
+                                     const Epetra_Map &rows, CoarseSpace &space);
   } // namespace coarse_space_internal
 
   /// InputError naming the parameters unless the cells have parents or the
