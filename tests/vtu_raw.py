@@ -11,6 +11,10 @@ against deal.II's zlib writer, its independent reference.
    at a UInt32 byte count followed by that many bytes, the blocks follow one
    another to the end of the appended section, and the displacement block
    holds what VTK read.
+3. np 2 = np 1 (the arrays are written one at a time since session 23): the
+   3D bar written raw on two processes holds, cell by cell (a cell found by
+   its points), the arrays of the one-process file but rank, to the solver's
+   tolerance (1e-6 of each array's largest value).
 """
 import os
 import re
@@ -64,6 +68,7 @@ def vtk_read(*files):
     return json.loads(p.stdout)
 
 
+read = {}
 CASES = [("prm/tube_impact.prm", ["Time/End time=1e-4"], 1),
          ("prm/cantilever.prm", ["Time/End time=0.2"], 2),
          ("prm/twisted_bar_3d.prm", ["Output/Field interval=0"], 1)]
@@ -75,6 +80,7 @@ for scene, sets, np in CASES:
                         name="vtu_%s_%s" % (name, encoding))
         files[encoding] = last_pvtu(out)
     data = vtk_read(files["raw"], files["zlib"])
+    read[name] = data[files["raw"]]
     raw, zlib = data[files["raw"]], data[files["zlib"]]
     same = [k for k in zlib["arrays"] if raw["arrays"].get(k) == zlib["arrays"][k]]
     print("  %s (np %d): %d points, %d cells; %d of %d arrays equal bit for bit"
@@ -121,4 +127,37 @@ for scene, sets, np in CASES:
               % (name, len(b["points"]) // 3, len(b) - 1, worst))
         check(len(a["points"]) == len(b["points"]) > 0 and worst < 1e-9,
               name + ": contact fields raw = ascii to its 10 digits")
+
+def by_cell(grid):
+    """Each cell's points (the key) and each array's values at them."""
+    n = len(grid["cells"]) // len(grid["types"])
+    cells = {}
+    for c in range(len(grid["types"])):
+        ids = grid["cells"][n * c:n * c + n]
+        key = tuple(tuple(grid["points"][3 * i:3 * i + 3]) for i in ids)
+        values = {}
+        for name, v in grid["arrays"].items():
+            width = len(v) // (len(grid["points"]) // 3)
+            values[name] = [v[width * i + k] for i in ids for k in range(width)]
+        cells[key] = values
+    return cells
+
+
+# 3. The 3D bar on two processes against its one-process file.
+out, _, _ = run("prm/twisted_bar_3d.prm", ["Output/Field interval=0", "Output/VTU encoding=raw"], np=2,
+                name="vtu_twisted_bar_3d_raw_np2")
+two = by_cell(vtk_read(last_pvtu(out))[last_pvtu(out)])
+one = by_cell(read["twisted_bar_3d"])
+names = sorted(n for n in next(iter(one.values())) if n != "rank")
+worst = 0.0
+for name in names:
+    scale = max(max(abs(x) for x in cell[name]) for cell in one.values()) or 1.0
+    for key, cell in one.items():
+        if key in two:
+            worst = max(worst, max(abs(x - y) for x, y in zip(cell[name], two[key][name])) / scale)
+print("  twisted_bar_3d np 2: %d cells (np 1: %d), %d arrays, largest difference %.1e of the "
+      "array's largest value" % (len(two), len(one), len(names), worst))
+check(sorted(two) == sorted(one) and sorted(n for n in next(iter(two.values())) if n != "rank") == names,
+      "twisted_bar_3d: np 2 writes the cells and arrays of np 1")
+check(worst <= 1e-6, "twisted_bar_3d: np 2's arrays = np 1's to 1e-6 of each array's scale")
 finish()

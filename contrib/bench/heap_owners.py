@@ -23,6 +23,7 @@ rules = [
  ("copier's other tables", ["CellScatter", "AssemblyMapping", "reserve_vector_indices"]),
  ("cells' pattern rows (kept)", ["setup_matrix()::{lambda()#1}"]),
  ("matrix values", ["SparseMatrix::reinit(Epetra_CrsMatrix"]),
+ ("matrix values, a second copy (the Copy matrix on the graph, until session 23)", ["Epetra_CrsMatrix::Allocate"]),
  ("matrix graph (column indices)", ["make_serial_matrix", "setup_matrix"]),
  ("output buffers (fields)", ["Fields<>"]),
  ("vectors (Epetra)", ["Vector::reinit", "MPI::Vector"]),

@@ -316,12 +316,16 @@ namespace anvil
     // contact couplings (serial_matrix.cc): the full tube crush's 177
     // patterns cost 2.9 G instructions by deal.II's route, 2.0 G of it in
     // the DynamicSparsityPattern, the global-index insertion and the sort.
+    // Without contact the rows go as they enter the graph (~0.8 KB/DoF in
+    // 3D, reserved for a vertex's eight cells: they were held beside the
+    // graph and the values, doc/memory.md session 23).
     if (Utilities::MPI::n_mpi_processes(mpi_communicator) > 1)
       make_distributed_matrix(cell_pattern, groups, constraints, locally_owned_dofs, mpi_communicator,
-                              system_matrix);
+                              system_matrix, !contact);
     else
       make_serial_matrix(cell_pattern, groups, constraints,
-                         locally_owned_dofs.make_trilinos_map(mpi_communicator, false), system_matrix);
+                         locally_owned_dofs.make_trilinos_map(mpi_communicator, false), system_matrix,
+                         !contact);
     check_pattern();
     release_cell_pattern();
   }

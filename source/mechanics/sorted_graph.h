@@ -39,8 +39,12 @@ namespace anvil
     graph.declare_sorted();
     graph.FillComplete(map, map);
     graph.OptimizeStorage();
-    Epetra_CrsMatrix on_graph(Copy, graph);
-    on_graph.FillComplete(map, map);
+    // deal.II's reinit reads only the graph, its maps and Filled() (the
+    // graph's) from the matrix given and makes its own zeroed values: a View
+    // matrix holds no values of its own. A Copy one held a second zeroed copy
+    // of K's values while deal.II's were made: 648 B/DoF in 3D, the 1 M-DoF
+    // run's resident peak (doc/memory.md, session 23).
+    const Epetra_CrsMatrix on_graph(View, graph);
     matrix.reinit(on_graph, false);
   }
 } // namespace anvil

@@ -109,10 +109,11 @@ namespace anvil
       }
   }
 
-  void make_distributed_matrix(const std::vector<std::vector<Index>> &cell_rows,
+  void make_distributed_matrix(std::vector<std::vector<Index>>       &cell_rows,
                                const std::vector<std::vector<Index>> &couplings,
                                const AffineConstraints<double> &constraints, const IndexSet &owned,
-                               const MPI_Comm comm, TrilinosWrappers::SparseMatrix &matrix)
+                               const MPI_Comm comm, TrilinosWrappers::SparseMatrix &matrix,
+                               const bool release_rows)
   {
     const unsigned int n_owned = owned.n_elements();
     AssertThrow(owned.is_contiguous() && cell_rows.size() >= n_owned,
@@ -192,7 +193,12 @@ namespace anvil
           }
         offsets[k + 1] = columns.size();
         lengths[k]     = offsets[k + 1] - offsets[k];
+        if (release_rows)
+          std::vector<Index>().swap(cell_rows[k]);
       }
+    // The cells' rows go before the graph and the values come.
+    if (release_rows)
+      std::vector<std::vector<Index>>().swap(cell_rows);
     std::vector<std::vector<Index>>().swap(extra.mine);
 
     // deal.II's graph on several processes is made without a column map:

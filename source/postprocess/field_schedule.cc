@@ -16,8 +16,10 @@ namespace anvil
                       "Write VTU fields every this many steps (0: only the first and last).");
     prm.declare_entry("VTU encoding", "raw", Patterns::Selection("raw|zlib"),
                       "How the solution fields' VTU files hold their arrays: raw (appended "
-                      "binary, written at memory speed, files about 3 times larger than zlib's) or zlib "
-                      "(deal.II's compressed base64). ParaView and VTK read both.");
+                      "binary, written at memory speed one array at a time, files about 3 times "
+                      "larger than zlib's) or zlib (deal.II's compressed base64, smaller files; it "
+                      "builds every patch of the write at once: more memory). ParaView "
+                      "and VTK read both.");
   }
 
   void FieldSchedule::parse_parameters(ParameterHandler &prm)

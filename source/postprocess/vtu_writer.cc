@@ -38,15 +38,12 @@ namespace anvil
   } // namespace
 
   template <typename Float>
-  void write_vtu_raw(const BasicVtuPiece<Float> &piece, const std::string &filename)
+  void write_vtu_raw(const BasicVtuPiece<Float> &mesh, const std::vector<VtuArray> &arrays,
+                     const std::function<void(std::size_t, std::vector<Float> &)> &fill,
+                     const std::string                                               &filename)
   {
     const char *type = sizeof(Float) == 4 ? "Float32" : "Float64";
-    const std::size_t n_points = piece.n_points(), n_cells = piece.types.size();
-    for (const auto &a : piece.point_data)
-      if (a.values.size() != n_points * a.components)
-        throw std::logic_error("write_vtu_raw: array " + a.name + " has " +
-                               std::to_string(a.values.size()) + " values for " +
-                               std::to_string(n_points) + " points");
+    const std::size_t n_points = mesh.n_points(), n_cells = mesh.types.size();
     std::ofstream out(filename, std::ios::binary);
     if (!out)
       throw std::runtime_error("cannot write " + filename);
@@ -55,39 +52,63 @@ namespace anvil
            "byte_order=\""
         << byte_order() << "\" header_type=\"UInt32\">\n<UnstructuredGrid>\n<Piece NumberOfPoints=\""
         << n_points << "\" NumberOfCells=\"" << n_cells << "\">\n<PointData>\n";
-    for (const auto &a : piece.point_data)
+    for (const auto &a : arrays)
       {
         out << "<DataArray type=\"" << type << "\" Name=\"" << a.name << "\"";
         if (a.components > 1)
           out << " NumberOfComponents=\"" << a.components << "\"";
         out << " format=\"appended\" offset=\"" << offset << "\"/>\n";
-        offset += block_size(a.values);
+        offset += sizeof(std::uint32_t) + n_points * a.components * sizeof(Float);
       }
     out << "</PointData>\n<Points>\n<DataArray type=\"" << type
         << "\" NumberOfComponents=\"3\" format=\"appended\" offset=\""
         << offset << "\"/>\n</Points>\n<Cells>\n";
-    offset += block_size(piece.points);
+    offset += block_size(mesh.points);
     out << "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"appended\" offset=\""
         << offset << "\"/>\n";
-    offset += block_size(piece.connectivity);
+    offset += block_size(mesh.connectivity);
     out << "<DataArray type=\"Int32\" Name=\"offsets\" format=\"appended\" offset=\"" << offset
         << "\"/>\n";
-    offset += block_size(piece.offsets);
+    offset += block_size(mesh.offsets);
     out << "<DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"" << offset
         << "\"/>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
-    for (const auto &a : piece.point_data)
-      write_block(out, a.values);
-    write_block(out, piece.points);
-    write_block(out, piece.connectivity);
-    write_block(out, piece.offsets);
-    write_block(out, piece.types);
+    std::vector<Float> values;
+    for (std::size_t i = 0; i < arrays.size(); ++i)
+      {
+        fill(i, values);
+        // The header promised this size: a shorter or longer block would
+        // shift every later offset.
+        if (values.size() != n_points * arrays[i].components)
+          throw std::logic_error("write_vtu_raw: array " + arrays[i].name + " has " +
+                                 std::to_string(values.size()) + " values for " +
+                                 std::to_string(n_points) + " points");
+        write_block(out, values);
+      }
+    std::vector<Float>().swap(values);
+    write_block(out, mesh.points);
+    write_block(out, mesh.connectivity);
+    write_block(out, mesh.offsets);
+    write_block(out, mesh.types);
     out << "\n</AppendedData>\n</VTKFile>\n";
     if (!out)
       throw std::runtime_error("cannot write " + filename);
   }
 
   template <typename Float>
-  void write_pvtu_record(const BasicVtuPiece<Float> &piece, const std::vector<std::string> &pieces,
+  void write_vtu_raw(const BasicVtuPiece<Float> &piece, const std::string &filename)
+  {
+    std::vector<VtuArray> arrays;
+    for (const auto &a : piece.point_data)
+      arrays.push_back({a.name, a.components});
+    // The piece's arrays as they are (one copy at a time).
+    write_vtu_raw<Float>(
+      piece, arrays,
+      [&](const std::size_t i, std::vector<Float> &values) { values = piece.point_data[i].values; },
+      filename);
+  }
+
+  template <typename Float>
+  void write_pvtu_record(const std::vector<VtuArray> &arrays, const std::vector<std::string> &pieces,
                          const std::string &filename)
   {
     const char *type = sizeof(Float) == 4 ? "Float32" : "Float64";
@@ -96,7 +117,7 @@ namespace anvil
            "byte_order=\""
         << byte_order() << "\" header_type=\"UInt32\">\n  <PUnstructuredGrid GhostLevel=\"0\">\n"
         << "    <PPointData>\n";
-    for (const auto &a : piece.point_data)
+    for (const auto &a : arrays)
       {
         out << "    <PDataArray type=\"" << type << "\" Name=\"" << a.name << "\"";
         if (a.components > 1)
@@ -112,10 +133,25 @@ namespace anvil
       throw std::runtime_error("cannot write " + filename);
   }
 
+  template <typename Float>
+  void write_pvtu_record(const BasicVtuPiece<Float> &piece, const std::vector<std::string> &pieces,
+                         const std::string &filename)
+  {
+    std::vector<VtuArray> arrays;
+    for (const auto &a : piece.point_data)
+      arrays.push_back({a.name, a.components});
+    write_pvtu_record<Float>(arrays, pieces, filename);
+  }
+
   template void write_vtu_raw(const BasicVtuPiece<float> &, const std::string &);
   template void write_vtu_raw(const BasicVtuPiece<double> &, const std::string &);
   template void write_pvtu_record(const BasicVtuPiece<float> &, const std::vector<std::string> &,
                                   const std::string &);
   template void write_pvtu_record(const BasicVtuPiece<double> &, const std::vector<std::string> &,
                                   const std::string &);
+  template void write_pvtu_record<float>(const std::vector<VtuArray> &, const std::vector<std::string> &,
+                                         const std::string &);
+  template void write_vtu_raw(const BasicVtuPiece<float> &, const std::vector<VtuArray> &,
+                              const std::function<void(std::size_t, std::vector<float> &)> &,
+                              const std::string &);
 } // namespace anvil

@@ -19,13 +19,16 @@ namespace anvil
    * The rows go in by local index, already sorted and without repeats, so
    * Epetra neither translates nor sorts them; the graph is the one deal.II's
    * DynamicSparsityPattern route makes (@p map: the owned dofs' contiguous
-   * map, row, column, domain and range alike).
+   * map, row, column, domain and range alike). With @p release_rows the
+   * caller keeps no rows: each goes once in the graph, before the values
+   * are made.
    */
-  void make_serial_matrix(const std::vector<std::vector<dealii::types::global_dof_index>> &cell_rows,
+  void make_serial_matrix(std::vector<std::vector<dealii::types::global_dof_index>>       &cell_rows,
                           const std::vector<std::vector<dealii::types::global_dof_index>> &couplings,
                           const dealii::AffineConstraints<double>                        &constraints,
                           const Epetra_Map                                                &map,
-                          dealii::TrilinosWrappers::SparseMatrix                          &matrix);
+                          dealii::TrilinosWrappers::SparseMatrix                          &matrix,
+                          bool                                                             release_rows);
 
   /// "" if @p a and @p b have the same rows, columns and entries (local
   /// indices of one process), else the first difference, one line.

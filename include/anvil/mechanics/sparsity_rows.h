@@ -39,11 +39,14 @@ namespace anvil
    * the matrix from the DynamicSparsityPattern), without that pattern.
    * Entries written into rows owned elsewhere go through Epetra_FECrsMatrix's
    * own off-process store (deal.II's route kept a separate matrix of them).
+   * With @p release_rows the caller keeps no rows: each goes once copied,
+   * before the graph and the values are made.
    */
-  void make_distributed_matrix(const std::vector<std::vector<dealii::types::global_dof_index>> &cell_rows,
+  void make_distributed_matrix(std::vector<std::vector<dealii::types::global_dof_index>>       &cell_rows,
                                const std::vector<std::vector<dealii::types::global_dof_index>> &couplings,
                                const dealii::AffineConstraints<double>                        &constraints,
                                const dealii::IndexSet                                          &owned,
                                const MPI_Comm                                                   comm,
-                               dealii::TrilinosWrappers::SparseMatrix                          &matrix);
+                               dealii::TrilinosWrappers::SparseMatrix                          &matrix,
+                               bool                                                             release_rows);
 } // namespace anvil

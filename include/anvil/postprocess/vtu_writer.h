@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,8 +42,33 @@ namespace anvil
   template <typename Float>
   void write_vtu_raw(const BasicVtuPiece<Float> &piece, const std::string &filename);
 
+  /// A point array's name and components per point.
+  struct VtuArray
+  {
+    std::string  name;
+    unsigned int components = 1;
+  };
+
+  /**
+   * write_vtu_raw()'s file with the point arrays made one at a time:
+   * @p fill(i, values) puts array i's values (@p arrays[i].components per
+   * point) in values, which is written and then filled again with the next
+   * array, so the arrays are never all held (the header's offsets follow
+   * from the sizes). @p mesh gives the points and cells; its point_data is
+   * not read. The same bytes as write_vtu_raw() of the piece holding the arrays.
+   */
+  template <typename Float>
+  void write_vtu_raw(const BasicVtuPiece<Float> &mesh, const std::vector<VtuArray> &arrays,
+                     const std::function<void(std::size_t, std::vector<Float> &)> &fill,
+                     const std::string                                               &filename);
+
   /// The .pvtu record naming @p pieces (relative to it), with @p piece's array names.
   template <typename Float>
   void write_pvtu_record(const BasicVtuPiece<Float> &piece, const std::vector<std::string> &pieces,
+                         const std::string &filename);
+
+  /// The .pvtu record naming @p pieces, with the point arrays @p arrays (of type @p Float).
+  template <typename Float>
+  void write_pvtu_record(const std::vector<VtuArray> &arrays, const std::vector<std::string> &pieces,
                          const std::string &filename);
 } // namespace anvil
