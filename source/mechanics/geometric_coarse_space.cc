@@ -9,6 +9,7 @@
 #include <deal.II/lac/vector_memory.h>
 
 #include <anvil/core/input_error.h>
+#include <anvil/core/klu_factorization.h>
 #include <anvil/core/instantiate.h>
 
 #include "geometric_coarse_space.h"
@@ -56,6 +57,28 @@ namespace anvil
     return Ac;
   }
 
+  unsigned int coarsest_ml_cycles(const unsigned int rows, const unsigned int fine_rows)
+  {
+    // A coarsest level the mesh could not coarsen (68³ and 34³: 17 odd
+    // cells, 17 496 rows): one ML V-cycle on it is far from a solve. 34³
+    // (two levels) with ML once, twice, three times on it: 28.7, 26.1, 25.3
+    // Krylov per solve; a cycle there is ~20 % of a GMRES iteration's
+    // matvec work, and two cost the same CPU as one. Below a deeper cycle
+    // (1 M DoFs: 1/56 of the fine rows) a cycle is ~3 %: three
+    // (doc/linear_solver.md, session 23).
+    if (rows < min_rows_to_coarsen)
+      return 1;
+    return fine_rows >= 32ull * rows ? 3 : 2;
+  }
+
+  bool coarsest_factored(const unsigned int)
+  {
+    // KLU on 17 496 rows (34³'s coarsest, through ML's Amesos-KLU): 18 CPU s
+    // per factorisation against ~0.6 s for the whole cycle's set-up with ML:
+    // never automatic (doc/linear_solver.md, session 23).
+    return false;
+  }
+
   std::vector<std::vector<double>> inject(const CoarseSpace &space, const std::vector<std::vector<double>> &fine,
                                           const Epetra_CrsMatrix &K)
   {
@@ -96,10 +119,15 @@ namespace anvil
       unsigned int                       levels   = 2;
       int                                mode_set = -1;
       std::vector<std::vector<double>>   coarse_modes;
+      /// The coarsest level's factorisation (when it is solved directly).
+      std::unique_ptr<KluFactorization>  direct;
+      CoarsestSolve                      coarsest;
       boost::signals2::scoped_connection change, clear;
       void                               drop()
       {
         space.reset();
+        direct.reset();
+        coarsest = CoarsestSolve();
         coarse_modes = std::vector<std::vector<double>>();
         mode_set     = -1;
         dof_handler  = nullptr;
@@ -142,6 +170,31 @@ namespace anvil
                             rows.MyGlobalElements());
         }
       return Utilities::MPI::min(same, dof_handler.get_communicator()) == 1;
+    }
+
+    /// The coarsest level's solve (geometric_coarse_space.h, coarsest_ml_cycles());
+    /// ANVIL_GMG_COARSE_CYCLES=k (ML k times) and ANVIL_GMG_COARSE_DIRECT=1
+    /// (KLU) override the rule for benchmarks. The factorisation is kept in
+    /// @p direct across solves (its analysis and pivots reused).
+    CoarsestSolve coarsest_solve(const CoarseSpace &first, std::unique_ptr<KluFactorization> &direct)
+    {
+      const CoarseSpace *last = &first;
+      while (last->coarser)
+        last = last->coarser.get();
+      CoarsestSolve solve;
+      solve.ml_cycles = coarsest_ml_cycles(last->n_coarse_dofs, first.P->NumGlobalRows());
+      if (const char *s = std::getenv("ANVIL_GMG_COARSE_CYCLES"))
+        solve.ml_cycles = std::max(1, std::atoi(s));
+      bool factored = coarsest_factored(last->n_coarse_dofs);
+      if (const char *s = std::getenv("ANVIL_GMG_COARSE_DIRECT"))
+        factored = std::string(s) == "1";
+      if (factored)
+        {
+          if (!direct)
+            direct = std::make_unique<KluFactorization>();
+          solve.direct = direct.get();
+        }
+      return solve;
     }
   } // namespace
 
@@ -189,6 +242,7 @@ namespace anvil
         kept.drop();
         kept.space       = std::make_unique<CoarseSpace>(make_coarse_space(dof_handler, constraints, K));
         kept.levels      = add_coarse_levels(dof_handler, constraints, K, *kept.space, max_levels, min_rows);
+        kept.coarsest    = coarsest_solve(*kept.space, kept.direct);
         kept.dof_handler = &dof_handler;
         kept.constrained = constrained;
         auto &signals    = dof_handler.get_triangulation().signals;
@@ -199,7 +253,11 @@ namespace anvil
             std::cout << "geometric coarse space: " << kept.levels << " levels, rows " << K.m();
             for (const CoarseSpace *s = kept.space.get(); s; s = s->coarser.get())
               std::cout << ", " << s->n_coarse_dofs;
-            std::cout << std::endl;
+            std::cout << "; coarsest: ";
+            if (kept.coarsest.direct)
+              std::cout << "KLU" << std::endl;
+            else
+              std::cout << "ML x" << kept.coarsest.ml_cycles << std::endl;
           }
         built("P built");
       }
@@ -221,7 +279,8 @@ namespace anvil
       if (const char *s = std::getenv("ANVIL_GMG_BY_ROWS"))
         by_rows = std::string(s) == "1";
       timer.restart();
-      const MultilevelPreconditioner preconditioner(K, *kept.space, kept.coarse_modes, coarse, smoothing, by_rows);
+      const MultilevelPreconditioner preconditioner(K, *kept.space, kept.coarse_modes, coarse, smoothing, by_rows,
+                                                    kept.coarsest);
       built("cycle set up");
       // The same GMRES as ML's (stall stop, pool given back).
       iterations = run_gmres(K, x, b, preconditioner, settings);

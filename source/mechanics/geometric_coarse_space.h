@@ -39,6 +39,8 @@ class Ifpack_Chebyshev;
 
 namespace anvil
 {
+  class KluFactorization;
+
   /**
    * The prolongation from the coarse Q1^dim space into the fine one
    * (coarse_space_prolongation.cc). When every active cell has a parent (a
@@ -91,6 +93,12 @@ namespace anvil
   /// CPU, −10 % memory and −1.8 Krylov per solve against two, at 24³ (6 591)
   /// +4 % CPU; 30³ (12 288) keeps two (doc/linear_solver.md, session 22).
   constexpr unsigned int min_rows_to_coarsen = 14000;
+
+  /// The automatic coarsest solve (geometric_coarse_space.cc): ML V-cycles
+  /// per visit of a coarsest level of @p rows rows below @p fine_rows fine
+  /// ones, or KLU.
+  unsigned int coarsest_ml_cycles(unsigned int rows, unsigned int fine_rows);
+  bool         coarsest_factored(unsigned int rows);
 
   namespace coarse_space_internal
   {
@@ -166,6 +174,15 @@ namespace anvil
     double       ratio         = 30;
   };
 
+  /// How the coarsest level is solved: @p ml_cycles ML V-cycles (a fixed
+  /// linear iteration on A_{L−1}), or the factorisation @p direct (kept by
+  /// the caller across solves: KLU's analysis and pivots are reused).
+  struct CoarsestSolve
+  {
+    unsigned int      ml_cycles = 1;
+    KluFactorization *direct    = nullptr;
+  };
+
   /**
    * One V-cycle per vmult (multilevel_cycle.cc); on level ℓ < L − 1:
    * y = S_ℓ b; y += P_ℓ cycle_{ℓ+1}(P_ℓᵀ (b − A_ℓ y)); y += S_ℓ (b − A_ℓ y),
@@ -182,7 +199,8 @@ namespace anvil
                              const std::vector<std::vector<double>>       &coarse_modes,
                              const IterativeSolverSettings                &coarse_settings,
                              const LevelSmoothing                         &smoothing,
-                             bool                                          by_rows);
+                             bool                                          by_rows,
+                             const CoarsestSolve                          &coarsest = CoarsestSolve());
     ~MultilevelPreconditioner();
     void vmult(dealii::TrilinosWrappers::MPI::Vector &dst, const dealii::TrilinosWrappers::MPI::Vector &src) const;
     unsigned int n_levels() const { return levels.size() + 1; }
@@ -207,7 +225,13 @@ namespace anvil
     /// The smoothed levels 0 … L − 2.
     std::vector<Level>                                         levels;
     std::unique_ptr<dealii::TrilinosWrappers::PreconditionAMG> coarse_amg;
+    CoarsestSolve                                              coarsest;
+    /// The coarsest level's right-hand side and correction.
     mutable dealii::TrilinosWrappers::MPI::Vector              rc, ec;
+    /// Its residual and the next cycle's correction, made only for
+    /// ml_cycles > 1 (an empty deal.II vector allocates: the heap's layout,
+    /// and so the BLAS kernels' rounding, stays that of one cycle).
+    std::unique_ptr<dealii::TrilinosWrappers::MPI::Vector>     rk, ck;
   };
 
   /// GMRES right-preconditioned by the multilevel cycle (as solve_gmres()).

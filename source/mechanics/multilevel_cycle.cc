@@ -6,9 +6,10 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/index_set.h>
 
+#include <anvil/core/klu_factorization.h>
+
 #include "geometric_coarse_space.h"
 
-#include <cstdlib>
 
 DEAL_II_DISABLE_EXTRA_DIAGNOSTICS
 #include <Epetra_CrsMatrix.h>
@@ -56,7 +57,9 @@ namespace anvil
                                                      const std::vector<std::vector<double>> &coarse_modes,
                                                      const IterativeSolverSettings          &coarse_settings,
                                                      const LevelSmoothing                   &smoothing,
-                                                     const bool                              by_rows)
+                                                     const bool                              by_rows,
+                                                     const CoarsestSolve                    &coarsest)
+    : coarsest(coarsest)
   {
     std::vector<const CoarseSpace *> spaces;
     for (const CoarseSpace *s = &space; s; s = s->coarser.get())
@@ -78,7 +81,18 @@ namespace anvil
         else
           coarse_matrix.reinit(*coarser, true);
       }
-    coarse_amg = build_amg(coarse_matrix, coarse_modes, coarse_settings);
+    if (coarsest.direct)
+      {
+        // A new matrix object at every solve: KluFactorization tells a new
+        // one by its address, per process, and processes that disagree
+        // deadlock in Amesos (np 2: one analyses anew, the other refactors).
+        // clear() sends all to a new analysis (one process: KLU's analysis
+        // and pivots are still reused while the pattern fits).
+        coarsest.direct->clear();
+        coarsest.direct->factorize(coarse_matrix);
+      }
+    else
+      coarse_amg = build_amg(coarse_matrix, coarse_modes, coarse_settings);
 
     for (unsigned int l = 0; l < levels.size(); ++l)
       {
@@ -95,6 +109,11 @@ namespace anvil
     const IndexSet coarse_owned = coarse_matrix.locally_owned_range_indices();
     rc.reinit(coarse_owned, K.get_mpi_communicator());
     ec.reinit(coarse_owned, K.get_mpi_communicator());
+    if (!coarsest.direct && coarsest.ml_cycles > 1)
+      {
+        rk = std::make_unique<TrilinosWrappers::MPI::Vector>(coarse_owned, K.get_mpi_communicator());
+        ck = std::make_unique<TrilinosWrappers::MPI::Vector>(coarse_owned, K.get_mpi_communicator());
+      }
   }
 
   MultilevelPreconditioner::~MultilevelPreconditioner() = default;
@@ -114,17 +133,20 @@ namespace anvil
     if (l + 1 == levels.size())
       {
         level.P->Multiply(true, *level.r, rc.trilinos_vector());
-        coarse_amg->vmult(ec, rc);
-        // Benchmarks: ANVIL_GMG_COARSE_CYCLES=k applies ML k times (a fixed, linear iteration).
-        static const int coarse_cycles =
-          std::getenv("ANVIL_GMG_COARSE_CYCLES") ? std::atoi(std::getenv("ANVIL_GMG_COARSE_CYCLES")) : 1;
-        for (int k = 1; k < coarse_cycles; ++k)
+        if (coarsest.direct)
+          coarsest.direct->solve(ec, rc);
+        else
           {
-            TrilinosWrappers::MPI::Vector residual(rc), correction(rc);
-            coarse_matrix.vmult(residual, ec);
-            residual.sadd(-1., 1., rc);
-            coarse_amg->vmult(correction, residual);
-            ec += correction;
+            coarse_amg->vmult(ec, rc);
+            // ML again on the residual: a fixed linear iteration, so GMRES
+            // keeps a constant preconditioner.
+            for (unsigned int k = 1; k < coarsest.ml_cycles; ++k)
+              {
+                coarse_matrix.vmult(*rk, ec);
+                rk->sadd(-1., 1., rc);
+                coarse_amg->vmult(*ck, *rk);
+                ec += *ck;
+              }
           }
         level.P->Multiply(false, ec.trilinos_vector(), *level.t);
       }
