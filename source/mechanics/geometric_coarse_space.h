@@ -4,7 +4,8 @@
 // linear_solver.cc and the tests): Chebyshev on D⁻¹K on the fine mesh, a
 // coarse correction on the Q1 space of the mesh one refinement coarser,
 // A_1 = Pᵀ K P, and so on: Chebyshev on D_ℓ⁻¹A_ℓ on each middle level ℓ,
-// one ML V-cycle on the coarsest A_{L−1}; one V-cycle per GMRES iteration.
+// ML V-cycles (one, or 2–3 on a large one) on the coarsest A_{L−1}; one
+// V-cycle per GMRES iteration.
 // Two levels (session 20) cost P (~3.4 entries per fine row) and A_1 (1/8
 // of the rows, 27-node stencil), ~1/7 of K, against ML's smoothed
 // aggregation on 11 modes whose Galerkin product K·P alone peaks at
@@ -187,7 +188,7 @@ namespace anvil
    * One V-cycle per vmult (multilevel_cycle.cc); on level ℓ < L − 1:
    * y = S_ℓ b; y += P_ℓ cycle_{ℓ+1}(P_ℓᵀ (b − A_ℓ y)); y += S_ℓ (b − A_ℓ y),
    * S_ℓ: Chebyshev on D_ℓ⁻¹A_ℓ over [λ_max/ratio, λ_max] (λ_max by the power
-   * method), the coarsest: one ML V-cycle on A_{L−1}. Two levels: session
+   * method), the coarsest: CoarsestSolve (ML k times, or KLU). Two levels: session
    * 20's cycle, A_1 by galerkin_product(); more: galerkin_product_by_rows().
    */
   class MultilevelPreconditioner

@@ -3,6 +3,8 @@
 // operation (A_1 by EpetraExt, the same Chebyshev, the same ML), so their
 // answers stay bit-identical; deeper cycles smooth each middle level with
 // Chebyshev on D_ℓ⁻¹A_ℓ and form A_{ℓ+1} row by row (galerkin_product.cc).
+// The coarsest level: ML once (bit-identical to session 22), k times on the
+// residual, or KLU (CoarsestSolve; the rule in geometric_coarse_space.cc).
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/index_set.h>
 
