@@ -19,20 +19,10 @@ rows are coarsened again to 44^2 x 2 = 3 872, which keeps one. The log names the
 import os
 
 from anvil_test import run, check, finish, largest_column_difference
+from geometric_scenes import DIRECT, GEOMETRIC, PER_BODY, BLOCK, TWICE, THREE_D
 
 os.environ["ANVIL_GMG_LOG"] = "1"
-DIRECT = ["Mechanics/Linear solver/Type=direct"]
-GEOMETRIC = ["Mechanics/Linear solver/Type=iterative", "Mechanics/Linear solver/Preconditioner=geometric"]
-PER_BODY = ["Geometry/Partition=per body"]
-BLOCK = ["Mechanics/Element=F-bar", "Bodies/body/Material/Model=J2",
-         "Bodies/body/Material/Hardening/Initial yield stress=300",
-         "Bodies/body/Material/Hardening/Hardening modulus=1000", "Dimension=3",
-         "Boundary conditions/Displacement=front: ux = 0, uy = 0, uz = 0; back: uz = -0.05*t",
-         "Geometry/Blocks=body: 0, 0, 0, 1, 1, 1, 8, 8, 8"]
-TWICE_3D = ["Geometry/Global refinements=2", "Dimension=3",
-            "Geometry/Blocks=a: 0, 0, 0, 1, 1, 1, 2, 2, 2; b: 1.5, 0, 0, 2.5, 0.5, 1, 2, 1, 2",
-            "Boundary conditions/Displacement=a.bottom: ux = 0, uy = 0, uz = 0; a.top: uy = -0.01*t; "
-            "b.bottom: ux = 0, uy = 0, uz = 0; b.top: ux = 0.003*t, uy = -0.006*t, uz = 0.002*t"]
+TWICE_3D = TWICE + THREE_D
 # A_2 is small (81 rows on the box): ML would factor it whole; 'coarse: max size'
 # 30 makes its V-cycle an inexact solve, as on a large coarsest level.
 ML = "coarse: max size:int=30"
