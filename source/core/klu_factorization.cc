@@ -361,9 +361,20 @@ namespace anvil
       return;
     direct.reset();
     // Another object (a reinit, a deep copy_from) or another number of
-    // entries: the analysis no longer describes the matrix.
-    if (solver && (&epetra != matrix || epetra.NumGlobalNonzeros64() != nonzeros))
-      clear();
+    // entries: the analysis no longer describes the matrix. The object's
+    // address is a per-process fact (a reinit may hand one rank the freed
+    // block back and the other a new one), while the analysis below and
+    // the factorisation are collective: every rank must take the same branch
+    // or the ranks wait in different collectives (seen with the coarsest
+    // level's KLU at np 2, session 23). So a new analysis anywhere is one
+    // everywhere.
+    if (solver)
+      {
+        int here = &epetra != matrix || epetra.NumGlobalNonzeros64() != nonzeros, anywhere = here;
+        epetra.Comm().MaxAll(&here, &anywhere, 1);
+        if (anywhere)
+          clear();
+      }
     const bool first = !solver;
     if (first)
       {
