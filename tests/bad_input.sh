@@ -33,6 +33,7 @@ expect "bad --set entry"    "--set 'Time/End tme=2'"                       "$anv
 expect "bad --set value"    "--set 'Time/End time=soon'"                   "$anvil" "$src/prm/cantilever.prm" --set "Time/End time=soon"
 expect "malformed --set"    "expected 'Section/Subsection/Entry=value'"     "$anvil" "$src/prm/cantilever.prm" --set "Time/End time"
 expect "bad direct solver limit" "Direct solver limit.*expected a number of DoFs >= 0 or .measured." "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/Direct solver limit=lots"
+expect "bad heat direct solver limit" "Heat/Linear solver/Direct solver limit.*expected a number of DoFs >= 0 or .measured." "$anvil" "$src/prm/two_blocks.prm" --set "Heat/Linear solver/Direct solver limit=-5"
 expect "bad direct solver" "--set 'Mechanics/Linear solver/Direct solver=lu'.*auto\|klu\|band" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/Direct solver=lu"
 expect "bad AMG smoother degree" "AMG smoother degree.*expected 'automatic' or an integer in \[1, 10\]" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/AMG smoother degree=2.5"
 expect "bad AMG Chebyshev ratio" "AMG Chebyshev ratio.*expected 'automatic' or a number" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/AMG Chebyshev ratio=wide"

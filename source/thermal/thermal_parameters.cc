@@ -9,6 +9,8 @@
 
 #include <cctype>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace anvil
 {
@@ -26,6 +28,20 @@ namespace anvil
             (i + 1 == formula.size() || !part_of_name(formula[i + 1])))
           return true;
       return false;
+    }
+
+    /// Heat DoFs up to which KLU on M + γK costs less than GMRES with one
+    /// AMG V-cycle (contrib/bench/heat_scaling.py and the heat plate with its
+    /// consistent mass to 20 s, one core; doc/thermal.md, session 24). 2D:
+    /// KLU 8 % cheaper over the run at 15 625 DoFs, AMG 2.4 times cheaper at
+    /// 62 001: the two meet near 18 000 (KLU's work grows as N^1.5, AMG's as
+    /// N: 5.5 to 6.3 GMRES iterations per solve from 4 k to 250 k). 3D: KLU
+    /// wins at 1331, AMG by 6.4 times at 4913 (the factor fills as N^4/3),
+    /// as the mechanics' (linear_solver.h). Before: 100 000 unmeasured, with
+    /// KLU 2.4 times slower at 62 001 in 2D and 13 times at 15 625 in 3D.
+    constexpr unsigned int measured_heat_direct_solver_limit(const int dim)
+    {
+      return dim == 2 ? 20000 : 2000;
     }
   } // namespace
 
@@ -205,8 +221,12 @@ namespace anvil
     prm.declare_entry("Mass matrix", "consistent", Patterns::Selection("consistent|lumped"),
                       "consistent (solved by CG + Jacobi) or lumped (row sums: a diagonal "
                       "mass, cheaper, first-order accurate in space for the capacity).");
-    prm.declare_entry("Direct solver limit", "100000", Patterns::Integer(0),
-                      "Number of DoFs up to which 'automatic' chooses the direct solver.");
+    prm.declare_entry("Direct solver limit", "measured", Patterns::Anything(),
+                      "Number of DoFs up to which 'automatic' chooses the direct solver; measured: "
+                      "where KLU and GMRES + AMG cost the same on the heat plate (contrib/bench/"
+                      "heat_scaling.py, doc/thermal.md), " +
+                        std::to_string(measured_heat_direct_solver_limit(2)) + " in 2D, " +
+                        std::to_string(measured_heat_direct_solver_limit(3)) + " in 3D.");
     prm.leave_subsection();
     ThermalBoundaryConditions<dim>::declare_parameters(prm);
     prm.leave_subsection();
@@ -237,9 +257,27 @@ namespace anvil
     prm.enter_subsection("Linear solver");
     linear_solver       = prm.get("Type");
     lumped_mass         = prm.get("Mass matrix") == "lumped";
-    direct_solver_limit = prm.get_integer("Direct solver limit");
+    const std::string limit = prm.get("Direct solver limit");
     prm.leave_subsection();
     prm.leave_subsection();
+    if (limit == "measured")
+      direct_solver_limit = measured_heat_direct_solver_limit(dim);
+    else
+      {
+        std::size_t used = 0;
+        long        n    = -1;
+        try
+          {
+            n = std::stol(limit, &used);
+          }
+        catch (const std::exception &)
+          {
+          }
+        if (n < 0 || used != limit.size())
+          scene.fail("Heat/Linear solver/Direct solver limit",
+                     "= '" + limit + "': expected a number of DoFs >= 0 or 'measured'");
+        direct_solver_limit = n;
+      }
     parse_expression<dim>(initial_temperature, scene, "Heat/Initial temperature");
     if (!source.empty())
       parse_expression<dim>(source, scene, "Heat/Source");
