@@ -38,6 +38,9 @@ namespace anvil
 
   namespace
   {
+    /// The timer section of the step loop (contrib/bench/perf.py reads it).
+    const std::string step_section = "Steps (no output)";
+
     /// ANVIL_ETA_CLOCK=iterations (tests only): the progress line's clock
     /// counts Newton iterations, failed attempts included, instead of wall
     /// seconds, so that tests/eta_cut_back.py can hold the ETA's arithmetic
@@ -353,6 +356,11 @@ namespace anvil
     const double eps = 1e-12 * time.end_time;
     while (t < time.end_time - eps)
       {
+        // The steps' own work, attempts and commit included, without the
+        // outputs and checkpoints: what perf.py sets against one assembly and
+        // one linear solve per Newton iteration. The set-up before the first
+        // step and the closing after the last are paid once per run.
+        TimerOutput::Scope steps(*timer, step_section);
         const double step = time.breakpoints.clip(t, std::min(dt, time.end_time - t), eps);
         auto         r    = scheme->advance(t, t + step);
         // A formula that gave NaN or inf is the scene's error: no cut-back.
@@ -374,6 +382,7 @@ namespace anvil
                     << "; cutting back to dt = " << dt << " s" << std::endl;
             if (dt < time.minimum_time_step * (1 - 1e-12))
               {
+                steps.stop();
                 stop("failed at t = " + Utilities::to_string(t + step) + " s: " + r.failure +
                        "; minimum time step " + Utilities::to_string(time.minimum_time_step) +
                        " s reached",
@@ -390,6 +399,7 @@ namespace anvil
         current_time       = t;
         ++statistics.steps;
         const bool last = t >= time.end_time - eps;
+        steps.stop();
         output_step(&r, t, last);
         if (last || (checkpoint_interval > 0 && statistics.steps % checkpoint_interval == 0))
           try
@@ -404,6 +414,7 @@ namespace anvil
               write_summary(std::string("stopped: ") + e.what());
               throw;
             }
+        TimerOutput::Scope rest_of_step(*timer, step_section);
         if (!quiet)
           print_step(r, t, step);
         // A converged state whose temperature the yield stress does not
@@ -412,6 +423,7 @@ namespace anvil
         if (physics.mechanics())
           if (const std::string lost = physics.mechanics()->strength_lost(t); !lost.empty())
             {
+              rest_of_step.stop();
               stop(lost, t, step);
               return false;
             }
