@@ -9,7 +9,7 @@ Per shipped scene with mechanics (prm/*.prm), one process, one thread:
   - time per Newton iteration (mechanics' wall time / Newton iterations) against
     one assembly + one linear solve (their timer sections per call), and the
     ratio, target <= 1.5; the mechanics' wall time is thermal.csv's
-    mechanics_wall_time in a heat scene, else the step loop's timer section
+    mechanics_wall_time in a heat scene, else summary.json's step_loop_wall_time
     (every step's work, failed attempts, commit, newton.csv and the step line
     included; outputs, checkpoints, the set-up before the first step and the
     closing after the last left out); "(old)" the definition of sessions <= 23
@@ -20,7 +20,8 @@ Per shipped scene with mechanics (prm/*.prm), one process, one thread:
     (everything of solve_step: contact step, pattern, predictor, iterations,
     line search; not commit, output or heat) per Newton iteration against the
     CPU per call of assembly + linear solve; the same for the step loop's
-    section (cpu steps, heat-less scenes: the CPU figure of the wall ratio);
+    step_loop_cpu_time (cpu steps, heat-less scenes: the CPU figure of the
+    wall ratio);
     beside them the share of that Newton cost spent in residual-only
     evaluations ('Mechanics: residual');
     (contrib/bench/instruction_ratio.py: the same ratios in instructions);
@@ -53,7 +54,6 @@ os.makedirs(out, exist_ok=True)
 root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 anvil = os.path.join(build, "anvil")
 env = dict(os.environ, DEAL_II_NUM_THREADS="1")
-STEPS = "Steps (no output)"  # the step loop's timer section (simulator.cc)
 
 
 def bare_rows(path):
@@ -143,16 +143,16 @@ for name, scene, sets in cases:
     if not rows:
         # No heat: the mechanics is the solver's time less what is paid once
         # per run or per output (mesh, set-up, fields, checkpoints), as the
-        # split scenes' mechanics_wall_time leaves them out too: the timer
-        # section of the step loop without outputs and checkpoints. Before it
+        # split scenes' mechanics_wall_time leaves them out too: summary.json's
+        # step_loop_wall_time, the step loop without outputs and checkpoints. Before it
         # existed (sessions ≤ 23, "(old)"): the solver's time less the mesh,
         # 'Mechanics: setup', outputs and checkpoints, which left the rest of
         # the set-up before the first step (probes located, histories opened,
         # the problem's construction) and the closing after the last step in.
         old_mech = s["wall_time"] - sum(w.get(k, 0.0) for k in
                                         ("Mesh", "Mechanics: setup", "Output", "Checkpoint"))
-        mech = w.get(STEPS, old_mech)
-        cpu_steps = c.get(STEPS)
+        mech = s.get("step_loop_wall_time", old_mech)
+        cpu_steps = s.get("step_loop_cpu_time")
     newton = max(1, s["newton_iterations"])
     one = per_call(t, "Mechanics: assembly") + per_call(t, "Mechanics: linear solve")
     solves = t.get("Mechanics: linear solve", (0, 0))[0]
@@ -172,13 +172,13 @@ print("  solver: summary.json wall_time (two blocks: target <= 0.5 s, seed 18.33
 print("  load average now %.1f on %d cores: wall times are only comparable on an idle machine"
       % (os.getloadavg()[0], os.cpu_count()))
 print("  heat/mech: thermal.csv thermal / mechanics wall time (target <= 25 %%); s/Newton: mechanics wall time per "
-      "Newton iteration (heat scenes: thermal.csv's mechanics_wall_time; the others: the '%s' section, "
+      "Newton iteration (heat scenes: thermal.csv's mechanics_wall_time; the others: summary.json's step_loop_wall_time, "
       "the step loop without set-up, outputs and checkpoints); asm+solve: one 'Mechanics: assembly' + one "
       "'Mechanics: linear solve' (timer means); ratio: s/Newton / asm+solve (target <= 1.5); (old): the same with "
       "the definition of sessions <= 23 (solver time - mesh, 'Mechanics: setup', outputs, checkpoints: the rest of "
-      "the set-up and the run's closing counted per Newton iteration)" % STEPS)
+      "the set-up and the run's closing counted per Newton iteration)")
 print("  cpu ratio: CPU seconds of 'Mechanics: Newton solve' per Newton iteration / CPU per assembly + linear solve "
-      "(load-independent; no commit, output or heat); cpu steps: the same for the step loop's section, commit, "
+      "(load-independent; no commit, output or heat); cpu steps: the same for step_loop_cpu_time (user + system), commit, "
       "newton.csv and the step line included (heat-less scenes); resid: the Newton CPU's share in residual-only "
       "evaluations")
 print("  Krylov/sol: mechanical linear iterations per linear solve (1: direct); arkode: ARKode steps per step")
