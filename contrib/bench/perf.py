@@ -171,7 +171,7 @@ print("  solver: summary.json wall_time (two blocks: target <= 0.5 s, seed 18.33
       "wall (CPU seconds) (target <= 1 s); start-up: anvil --check (best of 3)")
 print("  load average now %.1f on %d cores: wall times are only comparable on an idle machine"
       % (os.getloadavg()[0], os.cpu_count()))
-print("  heat/mech: thermal.csv thermal / mechanics wall time (target <= 25 %%); s/Newton: mechanics wall time per "
+print("  heat/mech: thermal.csv thermal / mechanics wall time (target <= 25 %); s/Newton: mechanics wall time per "
       "Newton iteration (heat scenes: thermal.csv's mechanics_wall_time; the others: summary.json's step_loop_wall_time, "
       "the step loop without set-up, outputs and checkpoints); asm+solve: one 'Mechanics: assembly' + one "
       "'Mechanics: linear solve' (timer means); ratio: s/Newton / asm+solve (target <= 1.5); (old): the same with "

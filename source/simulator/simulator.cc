@@ -7,14 +7,14 @@
 #include <anvil/core/instantiate.h>
 #include <anvil/simulator/simulator.h>
 
+#include "step_clock.h"
+
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
-
-#include <sys/resource.h>
 
 namespace anvil
 {
@@ -40,43 +40,6 @@ namespace anvil
 
   namespace
   {
-    /// Wall and CPU seconds (user + system, all threads) of a stretch of the
-    /// step loop, added to @p wall and @p cpu when it stops. Not a TimerOutput
-    /// section: deal.II's synchronises the processes at every start and stop,
-    /// and a process that throws alone (ANVIL_RANK_FAULT) would then call a
-    /// collective the others do not.
-    class StepClock
-    {
-    public:
-      StepClock(double &wall, double &cpu)
-        : wall(wall)
-        , cpu(cpu)
-        , wall_start(MPI_Wtime())
-        , cpu_start(cpu_seconds())
-      {}
-      ~StepClock() { stop(); }
-      void stop()
-      {
-        if (!running)
-          return;
-        running = false;
-        wall += MPI_Wtime() - wall_start;
-        cpu += cpu_seconds() - cpu_start;
-      }
-
-    private:
-      static double cpu_seconds()
-      {
-        rusage usage;
-        getrusage(RUSAGE_SELF, &usage);
-        return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
-               1e-6 * (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
-      }
-      double &wall, &cpu;
-      double  wall_start, cpu_start;
-      bool    running = true;
-    };
-
     /// ANVIL_ETA_CLOCK=iterations (tests only): the progress line's clock
     /// counts Newton iterations, failed attempts included, instead of wall
     /// seconds, so that tests/eta_cut_back.py can hold the ETA's arithmetic
@@ -396,7 +359,7 @@ namespace anvil
         // outputs and checkpoints: what perf.py sets against one assembly and
         // one linear solve per Newton iteration. The set-up before the first
         // step and the closing after the last are paid once per run.
-        StepClock steps(step_loop_wall, step_loop_cpu);
+        step_clock_detail::StepClock steps(step_loop_wall, step_loop_cpu);
         const double step = time.breakpoints.clip(t, std::min(dt, time.end_time - t), eps);
         auto         r    = scheme->advance(t, t + step);
         // A formula that gave NaN or inf is the scene's error: no cut-back.
@@ -450,7 +413,7 @@ namespace anvil
               write_summary(std::string("stopped: ") + e.what());
               throw;
             }
-        StepClock rest_of_step(step_loop_wall, step_loop_cpu);
+        step_clock_detail::StepClock rest_of_step(step_loop_wall, step_loop_cpu);
         if (!quiet)
           print_step(r, t, step);
         // A converged state whose temperature the yield stress does not
