@@ -78,19 +78,12 @@ namespace anvil
     }
 
     // Distinct symbols for the two kinds of evaluation, which assemble()
-    // does not tell apart by name: callgrind then counts the assemblies with
-    // the tangent apart from the residual-only ones, the two terms of the
-    // Newton ratio (contrib/bench/instruction_ratio.py). One call each.
+    // does not tell apart by name: callgrind counts the assemblies with the
+    // tangent apart from the residual-only ones (contrib/bench/instruction_ratio.py).
     template <typename Assemble>
-    [[gnu::noinline]] bool tangent_assembly(const Assemble &assemble)
-    {
-      return assemble(true);
-    }
+    [[gnu::noinline]] bool tangent_assembly(const Assemble &assemble) { return assemble(true); }
     template <typename Assemble>
-    [[gnu::noinline]] bool residual_assembly(const Assemble &assemble)
-    {
-      return assemble(false);
-    }
+    [[gnu::noinline]] bool residual_assembly(const Assemble &assemble) { return assemble(false); }
     template <typename Assemble>
     bool evaluate(const bool with_matrix, const Assemble &assemble)
     {
