@@ -43,6 +43,8 @@ TINY_DEFAULT = 1e-15
 EXCLUDED_SUMMARY = {
     "wall_time": "wall clock: machine and load dependent",
     "wall_time_per_phase": "wall clock per phase: machine and load dependent",
+    "step_loop_wall_time": "wall clock of the step loop: machine and load dependent",
+    "step_loop_cpu_time": "CPU seconds of the step loop: machine dependent",
     "cpu_time_per_phase": "CPU seconds per phase: machine dependent",
     "assembly_cells_per_second_per_process": "a rate measured by the wall clock",
     "peak_memory_MB": "memory: allocator, MPI and library dependent",

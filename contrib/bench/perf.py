@@ -8,13 +8,23 @@ Per shipped scene with mechanics (prm/*.prm), one process, one thread:
     (thermal.csv), target <= 25 %;
   - time per Newton iteration (mechanics' wall time / Newton iterations) against
     one assembly + one linear solve (their timer sections per call), and the
-    ratio, target <= 1.5;
+    ratio, target <= 1.5; the mechanics' wall time is thermal.csv's
+    mechanics_wall_time in a heat scene, else summary.json's step_loop_wall_time
+    (every step's work, failed attempts, commit, newton.csv and the step line
+    included; outputs, checkpoints, the set-up before the first step and the
+    closing after the last left out); "(old)" the definition of sessions <= 23
+    (the solver's time less mesh, 'Mechanics: setup', outputs and checkpoints,
+    which counted the rest of the set-up and the closing per Newton iteration);
   - the same ratio in CPU seconds (summary.json cpu_time_per_phase), which a
     loaded machine does not inflate: the 'Mechanics: Newton solve' section
     (everything of solve_step: contact step, pattern, predictor, iterations,
     line search; not commit, output or heat) per Newton iteration against the
-    CPU per call of assembly + linear solve; beside it the share of that
-    Newton cost spent in residual-only evaluations ('Mechanics: residual');
+    CPU per call of assembly + linear solve; the same for the step loop's
+    step_loop_cpu_time (cpu steps, heat-less scenes: the CPU figure of the
+    wall ratio);
+    beside them the share of that Newton cost spent in residual-only
+    evaluations ('Mechanics: residual');
+    (contrib/bench/instruction_ratio.py: the same ratios in instructions);
   - Krylov iterations per mechanical linear solve;
 and the thermal-only benchmark contrib/bench/heat_plate.prm (15 625 temperature
 unknowns, linear): wall time, ARKode steps, nonlinear iterations, linear solves.
@@ -113,9 +123,9 @@ cases += [(os.path.splitext(f)[0], "prm/" + f, [])
           if f.endswith(".prm") and os.path.splitext(f)[0] not in
           ("two_blocks", "necking_bar_thermal", "tube_impact", "steady_slab", "heat_half_space")]
 print("issue 15 figures, one process, one thread%s:" % (" (--small: tube to 0.5 ms)" if small else ""))
-print("%-20s %7s %13s %8s %6s %7s %8s %9s %10s %6s %9s %6s %8s %6s" % (
+print("%-20s %7s %13s %8s %6s %7s %8s %9s %10s %6s %6s %9s %9s %6s %8s %6s" % (
     "scene", "solver", "process (cpu)", "start-up", "steps", "Newton", "heat/mech", "s/Newton",
-    "asm+solve", "ratio", "cpu ratio", "resid", "Krylov/sol", "arkode"))
+    "asm+solve", "ratio", "(old)", "cpu ratio", "cpu steps", "resid", "Krylov/sol", "arkode"))
 for name, scene, sets in cases:
     if not wanted(name):
         continue
@@ -127,34 +137,50 @@ for name, scene, sets in cases:
     heat = sum(float(r["thermal_wall_time"]) for r in rows)
     arkode = sum(float(r["arkode_steps"]) for r in rows) / max(1, len(rows))
     w = s["wall_time_per_phase"]
+    c = s.get("cpu_time_per_phase", {})
+    old_mech = mech
+    cpu_steps = None
     if not rows:
         # No heat: the mechanics is the solver's time less what is paid once
         # per run or per output (mesh, set-up, fields, checkpoints), as the
-        # split scenes' mechanics_wall_time leaves them out too.
-        mech = s["wall_time"] - sum(w.get(k, 0.0) for k in
-                                    ("Mesh", "Mechanics: setup", "Output", "Checkpoint"))
+        # split scenes' mechanics_wall_time leaves them out too: summary.json's
+        # step_loop_wall_time, the step loop without outputs and checkpoints. Before it
+        # existed (sessions ≤ 23, "(old)"): the solver's time less the mesh,
+        # 'Mechanics: setup', outputs and checkpoints, which left the rest of
+        # the set-up before the first step (probes located, histories opened,
+        # the problem's construction) and the closing after the last step in.
+        old_mech = s["wall_time"] - sum(w.get(k, 0.0) for k in
+                                        ("Mesh", "Mechanics: setup", "Output", "Checkpoint"))
+        mech = s.get("step_loop_wall_time", old_mech)
+        cpu_steps = s.get("step_loop_cpu_time")
     newton = max(1, s["newton_iterations"])
     one = per_call(t, "Mechanics: assembly") + per_call(t, "Mechanics: linear solve")
     solves = t.get("Mechanics: linear solve", (0, 0))[0]
     # The CPU ratio: section CPU seconds of the same run, calls from the timer table.
-    c = s.get("cpu_time_per_phase", {})
     cpu_call = lambda k: c.get(k, 0.) / max(1, t.get(k, (0, 0))[0])
     cpu_one = cpu_call("Mechanics: assembly") + cpu_call("Mechanics: linear solve")
     cpu_newton = c.get("Mechanics: Newton solve", 0.) / newton
-    print("%-20s %7.2f %6.2f (%4.2f) %8.2f %6d %7d %8.1f%% %9.4f %10.4f %6.2f %9.2f %5.0f%% %8.1f %6.2f" % (
+    print("%-20s %7.2f %6.2f (%4.2f) %8.2f %6d %7d %8.1f%% %9.4f %10.4f %6.2f %6.2f %9.2f %9s %5.0f%% %8.1f %6.2f" % (
         name, s["wall_time"], process[0], process[1], startup(scene), s["steps"], s["newton_iterations"],
         100 * heat / max(mech, 1e-300), mech / newton, one, mech / newton / max(one, 1e-300),
-        cpu_newton / max(cpu_one, 1e-300), 100 * c.get("Mechanics: residual", 0.) / max(newton * cpu_newton, 1e-300),
+        old_mech / newton / max(one, 1e-300), cpu_newton / max(cpu_one, 1e-300),
+        "-" if cpu_steps is None else "%.2f" % (cpu_steps / newton / max(cpu_one, 1e-300)),
+        100 * c.get("Mechanics: residual", 0.) / max(newton * cpu_newton, 1e-300),
         s["linear_iterations"] / max(1, solves), arkode))
 print("  solver: summary.json wall_time (two blocks: target <= 0.5 s, seed 18.33 s); process: the whole run, "
       "wall (CPU seconds) (target <= 1 s); start-up: anvil --check (best of 3)")
 print("  load average now %.1f on %d cores: wall times are only comparable on an idle machine"
       % (os.getloadavg()[0], os.cpu_count()))
 print("  heat/mech: thermal.csv thermal / mechanics wall time (target <= 25 %); s/Newton: mechanics wall time per "
-      "Newton iteration (no mesh, set-up, output, checkpoints); asm+solve: one 'Mechanics: assembly' + one 'Mechanics: linear solve' (timer means); "
-      "ratio: s/Newton / asm+solve (target <= 1.5)")
+      "Newton iteration (heat scenes: thermal.csv's mechanics_wall_time; the others: summary.json's step_loop_wall_time, "
+      "the step loop without set-up, outputs and checkpoints); asm+solve: one 'Mechanics: assembly' + one "
+      "'Mechanics: linear solve' (timer means); ratio: s/Newton / asm+solve (target <= 1.5); (old): the same with "
+      "the definition of sessions <= 23 (solver time - mesh, 'Mechanics: setup', outputs, checkpoints: the rest of "
+      "the set-up and the run's closing counted per Newton iteration)")
 print("  cpu ratio: CPU seconds of 'Mechanics: Newton solve' per Newton iteration / CPU per assembly + linear solve "
-      "(load-independent; no commit, output or heat); resid: its share in residual-only evaluations")
+      "(load-independent; no commit, output or heat); cpu steps: the same for step_loop_cpu_time (user + system), commit, "
+      "newton.csv and the step line included (heat-less scenes); resid: the Newton CPU's share in residual-only "
+      "evaluations")
 print("  Krylov/sol: mechanical linear iterations per linear solve (1: direct); arkode: ARKode steps per step")
 
 # The heat problem alone: 124 x 124 Q1 cells, a boundary temperature jump and

@@ -1,6 +1,7 @@
 #include <anvil/core/csv_history.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -76,10 +77,25 @@ namespace anvil
   {
     if (!file.is_open())
       return;
-    file << std::setprecision(12);
+    // Each value as printf's %.12g, which is what the stream wrote with
+    // setprecision(12) (the same characters: std::to_chars' general format
+    // at a given precision is defined as printf's), without the stream's
+    // locale and facet calls per number (~1 500 instructions each); the row
+    // goes out in one write.
+    char        buffer[32];
+    std::string row;
+    row.reserve(values.size() * 20 + 1);
     for (std::size_t i = 0; i < values.size(); ++i)
-      file << (i ? "," : "") << values[i];
-    file << '\n' << std::flush;
+      {
+        if (i)
+          row += ',';
+        const auto end = std::to_chars(buffer, buffer + sizeof(buffer), values[i],
+                                       std::chars_format::general, 12).ptr;
+        row.append(buffer, end);
+      }
+    row += '\n';
+    file.write(row.data(), static_cast<std::streamsize>(row.size()));
+    file << std::flush;
   }
 
   std::string Summary::quote(const std::string &text)

@@ -373,8 +373,6 @@ namespace anvil
       auto                 cell_points = (*context.points)[cell];
       const MaterialModel &model       = *context.materials->at(cell->material_id());
       const bool           kept_step   = model.keeps_last_step();
-      if (formulation.f_bar && !kept_step)
-        f_bar.evaluate_centre(scratch);
       const PointStart *kept = nullptr;
       if (context.step_start && !context.step_start->points.empty())
         {
@@ -382,6 +380,18 @@ namespace anvil
           if (std::memcmp(key.data(), scratch.local_u_old.data(), key.size() * sizeof(double)) == 0)
             kept = context.step_start->points[cell].data();
         }
+      // F̄ needs J₀ of the centre; F̄_n comes from the root the step's
+      // updates kept (update()'s route), so neither J₀ₙ nor the centre's
+      // derivatives (the tangent's) are computed: J₀ by evaluate_centre()'s
+      // operations, the same bits.
+      if (formulation.f_bar && !kept_step && kept)
+        {
+          const double R0 = formulation.radius(ref, scratch.points.size());
+          scratch.J0      = formulation.active_det(
+            formulation.deformation_gradient(ref.centre_grad, ref.centre_value, scratch.local_u, R0));
+        }
+      else if (formulation.f_bar && !kept_step)
+        f_bar.evaluate_centre(scratch);
       MaterialIncrement    increment;
       increment.temperature = context.reference_temperature; // without a temperature field
       for (unsigned int q = 0; q < scratch.points.size(); ++q)
@@ -395,7 +405,12 @@ namespace anvil
             {
               double       beta  = 1;
               Tensor<2, 3> F_mat = F, F_mat_old = F_old;
-              if (formulation.f_bar)
+              if (formulation.f_bar && kept)
+                {
+                  F_mat_old = formulation.bar(F_old, kept[q].beta_old);
+                  F_mat     = f_bar.material_gradient(scratch, F, beta);
+                }
+              else if (formulation.f_bar)
                 F_mat = f_bar.material_gradient(scratch, F, F_old, beta, F_mat_old);
               p.kin.reinit(F_mat, F_mat_old, formulation.objective_rate, kinematics_planar_path);
             }

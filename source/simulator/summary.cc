@@ -44,6 +44,10 @@ namespace anvil
     s.set("newton_iterations", double(statistics.newton_iterations));
     s.set("linear_iterations", double(statistics.linear_iterations));
     s.set("wall_time", MPI_Wtime() - wall_start);
+    // The step loop without outputs, checkpoints, set-up and closing (the
+    // slowest process's wall clock, the processes' CPU seconds summed).
+    s.set("step_loop_wall_time", Utilities::MPI::max(step_loop_wall, mpi_communicator));
+    s.set("step_loop_cpu_time", Utilities::MPI::sum(step_loop_cpu, mpi_communicator));
     for (const auto &[section, seconds] : timer->get_summary_data(TimerOutput::total_wall_time))
       s.set("wall_time_per_phase", section, Utilities::MPI::max(seconds, mpi_communicator));
     // CPU seconds per phase, summed over the processes: what a loaded
@@ -68,6 +72,8 @@ namespace anvil
     // Units beside the numbers (the quantities of interest add theirs above).
     s.set("units", "time", "s");
     s.set("units", "wall_time", "s");
+    s.set("units", "step_loop_wall_time", "s");
+    s.set("units", "step_loop_cpu_time", "s");
     s.set("units", "peak_memory_MB", "MB");
     s.set("units", "energy", "N mm");
     s.set("units", "heat", "mJ");

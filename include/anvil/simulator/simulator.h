@@ -118,6 +118,11 @@ namespace anvil
     // Resident memory before the mesh and the physics (MPI, libraries): the
     // baseline subtracted from the peak for memory_per_dof_bytes.
     double      baseline_memory_mb = 0;
+    // Wall and CPU seconds of the step loop's own work (attempts, commit,
+    // newton.csv, the step line; no outputs, checkpoints, set-up or closing):
+    // summary.json's step_loop_*_time, perf.py's Newton ratio.
+    double      step_loop_wall = 0;
+    double      step_loop_cpu  = 0;
     // (wall clock, time) at the last accepted steps: the ETA from the recent
     // rate, failed attempts included (honest during a cut-back cascade).
     mutable std::vector<std::pair<double, double>> recent_steps;
