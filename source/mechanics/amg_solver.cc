@@ -341,7 +341,7 @@ namespace anvil
     // 541 with GMRES(60) and 121 with GCRO-DR(60, 20) (doc/linear_solver.md,
     // session 24). So after the first cycle, unless it stalled (not halved:
     // the failed attempt's solves, which the step's cut-back needs at once),
-    // GCRO-DR continues from the iterate reached, for at most four more cycles.
+    // GCRO-DR continues from the iterate reached.
     const DeflatedRestart sizes = deflated_restart(settings);
     if (sizes.blocks == 0 || settings.max_iterations <= settings.restart)
       return run_gmres(K, x, b, amg, settings);
@@ -355,7 +355,8 @@ namespace anvil
       {
         if (e.last_step < first.max_iterations || !(e.last_residual <= 0.5 * b.l2_norm()))
           throw;
-        const unsigned int cap = std::min(settings.max_iterations, 5 * settings.restart) - settings.restart;
+        // As GMRES: up to Maximum iterations (no stall stop inside GCRO-DR: left).
+        const unsigned int cap = settings.max_iterations - settings.restart;
         try
           {
             return settings.restart + gcrodr(K, x, b, amg, settings, sizes, cap);
