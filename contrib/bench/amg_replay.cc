@@ -7,6 +7,12 @@
 // Usage: amg_replay FILE [modes=N] [degree=D] [ratio=R] [restart=M]
 //                   [threshold=T] [coarse=C] [plain=1] [tolerance=E]
 // log=1 prints the residual every 10 iterations; the diagonal's signs are printed.
+// eig=1 prints the Ritz values of the preconditioned operator K M⁻¹ (the
+// Hessenberg matrix's eigenvalues at the end of the solve, or of its last
+// restart cycle), the 12 of smallest modulus and the count below 0.1 and with
+// a negative real part: outliers GMRES has to resolve one by one.
+// gcrodr=M,K solves with Belos's GCRO-DR instead (M vectors per cycle, K of
+// them harmonic Ritz vectors carried over each restart), same tolerance.
 // modes: the first N of the dumped vectors (2D: 3 rigid-body, + 2 isochoric).
 // ANVIL_ML_PARAMETERS reaches ML as in a run (build_amg()).
 #include <deal.II/base/index_set.h>
@@ -22,7 +28,16 @@
 
 #include <anvil/mechanics/linear_solver.h>
 
+#include <algorithm>
+#include <complex>
 #include <cstdio>
+
+DEAL_II_DISABLE_EXTRA_DIAGNOSTICS
+#include <BelosEpetraAdapter.hpp>
+#include <BelosGCRODRSolMgr.hpp>
+#include <BelosLinearProblem.hpp>
+#include <Epetra_CrsMatrix.h>
+DEAL_II_ENABLE_EXTRA_DIAGNOSTICS
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -82,7 +97,8 @@ int main(int argc, char **argv)
   unsigned int n_modes     = m;
   if (const char *cap = std::getenv("REPLAY_MAX"))
     settings.max_iterations = std::atoi(cap);
-  bool         log         = false, direct = false;
+  bool         log         = false, direct = false, eig = false;
+  int          gcrodr_blocks = 0, gcrodr_kept = 0;
   for (int a = 2; a < argc; ++a)
     {
       const std::string arg = argv[a], key = arg.substr(0, arg.find('=')),
@@ -107,6 +123,13 @@ int main(int argc, char **argv)
         direct = value == "1";
       else if (key == "log")
         log = value == "1";
+      else if (key == "gcrodr")
+        {
+          gcrodr_blocks = std::stoi(value.substr(0, value.find(',')));
+          gcrodr_kept   = std::stoi(value.substr(value.find(',') + 1));
+        }
+      else if (key == "eig")
+        eig = value == "1";
       else if (key == "components")
         settings.components = std::stoi(value);
       else
@@ -172,15 +195,67 @@ int main(int argc, char **argv)
   unsigned int iterations = 0;
   try
     {
-      if (log)
+      if (gcrodr_blocks > 0)
+        {
+          using MV = Epetra_MultiVector;
+          using OP = Epetra_Operator;
+          Teuchos::RCP<OP> A = Teuchos::rcp(const_cast<Epetra_CrsMatrix *>(&K.trilinos_matrix()), false);
+          Teuchos::RCP<MV> X = Teuchos::rcp(&x.trilinos_vector(), false);
+          Teuchos::RCP<MV> B = Teuchos::rcp(const_cast<Epetra_FEVector *>(&rhs.trilinos_vector()), false);
+          auto M = Teuchos::rcp(new Belos::EpetraPrecOp(Teuchos::rcp(&amg->trilinos_operator(), false)));
+          auto problem = Teuchos::rcp(new Belos::LinearProblem<double, MV, OP>(A, X, B));
+          problem->setRightPrec(M);
+          problem->setProblem();
+          auto params = Teuchos::rcp(new Teuchos::ParameterList);
+          params->set("Num Blocks", gcrodr_blocks);
+          params->set("Num Recycled Blocks", gcrodr_kept);
+          params->set("Maximum Iterations", static_cast<int>(settings.max_iterations));
+          params->set("Convergence Tolerance", settings.tolerance);
+          params->set("Verbosity", Belos::Errors + Belos::Warnings + (log ? Belos::StatusTestDetails : 0));
+          params->set("Output Frequency", 10);
+          Belos::GCRODRSolMgr<double, MV, OP> solver(problem, params);
+          const Belos::ReturnType converged = solver.solve();
+          iterations = solver.getNumIters();
+          if (converged != Belos::Converged)
+            std::cout << "GCRO-DR: not converged" << std::endl;
+        }
+      else if (log || eig)
         {
           // The residual's history (the run's solver, with deallog).
           deallog.depth_console(2);
           SolverControl control(settings.max_iterations, settings.tolerance * rhs.l2_norm(), true);
           control.log_frequency(10);
+          control.log_history(log);
           SolverGMRES<TrilinosWrappers::MPI::Vector> gmres(
             control, SolverGMRES<TrilinosWrappers::MPI::Vector>::AdditionalData(settings.restart + 2, true));
-          gmres.solve(K, x, rhs, *amg);
+          std::vector<std::complex<double>> ritz;
+          if (eig)
+            gmres.connect_eigenvalues_slot([&](const std::vector<std::complex<double>> &v) { ritz = v; });
+          try
+            {
+              gmres.solve(K, x, rhs, *amg);
+            }
+          catch (...)
+            {
+              if (!eig)
+                throw;
+            }
+          if (eig)
+            {
+              std::sort(ritz.begin(), ritz.end(),
+                        [](const auto &a, const auto &b) { return std::abs(a) < std::abs(b); });
+              int below = 0, negative = 0;
+              for (const auto &z : ritz)
+                {
+                  below += std::abs(z) < 0.1;
+                  negative += z.real() < 0;
+                }
+              std::cout << ritz.size() << " Ritz values of K M^-1, " << below << " of modulus < 0.1, " << negative
+                        << " with Re < 0; smallest:";
+              for (unsigned int k = 0; k < std::min<std::size_t>(12, ritz.size()); ++k)
+                std::cout << " " << ritz[k];
+              std::cout << "; largest " << (ritz.empty() ? 0. : std::abs(ritz.back())) << std::endl;
+            }
           iterations = control.last_step();
         }
       else
