@@ -35,7 +35,7 @@ namespace anvil
     /// consistent mass to 20 s, one core; doc/thermal.md, session 24). 2D:
     /// KLU 8 % cheaper over the run at 15 625 DoFs, AMG 2.4 times cheaper at
     /// 62 001: the two meet near 18 000 (KLU's work grows as N^1.5, AMG's as
-    /// N: 5.5 to 6.3 GMRES iterations per solve from 4 k to 250 k). 3D: KLU
+    /// N: 5.2 to 6.3 GMRES iterations per solve from 4 k to 1 M). 3D: KLU
     /// wins at 1331, AMG by 6.4 times at 4913 (the factor fills as N^4/3),
     /// as the mechanics' (linear_solver.h). Before: 100 000 unmeasured, with
     /// KLU 2.4 times slower at 62 001 in 2D and 13 times at 15 625 in 3D.
