@@ -1,6 +1,7 @@
 // The parameters of MechanicalProblem: declared and parsed from the Mechanics subsection.
 #include <deal.II/base/parameter_handler.h>
 
+#include <anvil/core/dof_limit.h>
 #include <anvil/core/input_error.h>
 #include <anvil/core/expression.h>
 #include <anvil/core/instantiate.h>
@@ -287,23 +288,8 @@ namespace anvil
     amg_plain_aggregation     = prm.get("AMG prolongator") == "plain";
     amg_package           = prm.get("AMG package");
     direct_solver         = prm.get("Direct solver");
-    const std::string limit = prm.get("Direct solver limit");
-    if (limit == "measured")
-      direct_solver_limit = measured_direct_solver_limit(dim);
-    else
-      try
-        {
-          std::size_t used = 0;
-          const long  n    = std::stol(limit, &used);
-          if (used != limit.size() || n < 0)
-            throw std::invalid_argument(limit);
-          direct_solver_limit = n;
-        }
-      catch (const std::exception &)
-        {
-          scene.fail("Mechanics/Linear solver/Direct solver limit",
-                     "= '" + limit + "': expected a number of DoFs >= 0 or 'measured'");
-        }
+    direct_solver_limit   = parse_dof_limit(prm.get("Direct solver limit"), measured_direct_solver_limit(dim), scene,
+                                          "Mechanics/Linear solver/Direct solver limit");
     prm.leave_subsection();
     prm.leave_subsection();
     if (f_bar && polynomial_degree != 1)

@@ -1,5 +1,6 @@
 // The heat problem's input: its material block, its boundary conditions and
 // its time integration entries, each checked against the scene before any work.
+#include <anvil/core/dof_limit.h>
 #include <anvil/core/expression.h>
 #include <anvil/core/input_error.h>
 #include <anvil/core/instantiate.h>
@@ -9,8 +10,6 @@
 
 #include <cctype>
 #include <cmath>
-#include <stdexcept>
-#include <string>
 
 namespace anvil
 {
@@ -257,27 +256,10 @@ namespace anvil
     prm.enter_subsection("Linear solver");
     linear_solver       = prm.get("Type");
     lumped_mass         = prm.get("Mass matrix") == "lumped";
-    const std::string limit = prm.get("Direct solver limit");
+    direct_solver_limit = parse_dof_limit(prm.get("Direct solver limit"), measured_heat_direct_solver_limit(dim),
+                                          scene, "Heat/Linear solver/Direct solver limit");
     prm.leave_subsection();
     prm.leave_subsection();
-    if (limit == "measured")
-      direct_solver_limit = measured_heat_direct_solver_limit(dim);
-    else
-      {
-        std::size_t used = 0;
-        long        n    = -1;
-        try
-          {
-            n = std::stol(limit, &used);
-          }
-        catch (const std::exception &)
-          {
-          }
-        if (n < 0 || used != limit.size())
-          scene.fail("Heat/Linear solver/Direct solver limit",
-                     "= '" + limit + "': expected a number of DoFs >= 0 or 'measured'");
-        direct_solver_limit = n;
-      }
     parse_expression<dim>(initial_temperature, scene, "Heat/Initial temperature");
     if (!source.empty())
       parse_expression<dim>(source, scene, "Heat/Source");
