@@ -85,11 +85,11 @@ namespace anvil
       }
     if (coarsest.direct)
       {
-        // A new matrix object at every solve: KluFactorization tells a new
-        // one by its address, per process, and processes that disagree
-        // deadlock in Amesos (np 2: one analyses anew, the other refactors).
-        // clear() sends all to a new analysis (one process: KLU's analysis
-        // and pivots are still reused while the pattern fits).
+        // A new matrix object at every solve, which may reuse the freed
+        // one's address on every process (KluFactorization then agrees,
+        // session 24, but Amesos would keep the old object's maps): clear()
+        // sends all to a new analysis (one process: KLU's analysis and
+        // pivots are still reused while the pattern fits).
         coarsest.direct->clear();
         coarsest.direct->factorize(coarse_matrix);
       }
