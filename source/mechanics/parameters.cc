@@ -159,10 +159,10 @@ namespace anvil
     prm.declare_entry("AMG cycle", "automatic", Patterns::Selection("automatic|V|W"),
                       "How a preconditioner application visits the AMG hierarchy's levels: V (each "
                       "coarse level once), W (twice per visit of the finer level), or automatic: W "
-                      "in 2D with the isochoric modes (plastic flow), else V. On the 2D plastic F-bar "
-                      "block 512^2 the W-cycle takes 16-23 Krylov iterations per converged solve against "
-                      "V's 24-34 at 9 % less solve time; in 3D (20^3) 17.9 against 21.5 per Newton "
-                      "iteration at 8 % more (doc/linear_solver.md, session 25).");
+                      "in 2D with the isochoric modes (plastic flow) from 100000 DoFs, else V. 2D "
+                      "plastic F-bar block, Krylov iterations per solve V against W: 256^2 28.6 / 20.9 "
+                      "at the same CPU, 512^2 37.4 / 27.7 at 14 % less; below 10^5 DoFs and in 3D W "
+                      "costs more than it saves (doc/linear_solver.md, session 25).");
     prm.declare_entry("AMG prolongator", "smoothed", Patterns::Selection("smoothed|plain"),
                       "smoothed: smoothed aggregation (fewest Krylov iterations). plain: the "
                       "tentative prolongator alone, for large 3D problems short of memory: 3D "
