@@ -262,10 +262,7 @@ namespace anvil
         return build_muelu(K, near_null_space, settings);
       return build_amg(K, near_null_space, settings);
     }
-  } // namespace
 
-  namespace
-  {
     /// The deflated restart's sizes: vectors per cycle and harmonic Ritz
     /// vectors kept across a restart (ANVIL_GCRODR="m,k"; "0": off).
     struct DeflatedRestart
