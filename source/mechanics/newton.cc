@@ -3,6 +3,7 @@
 // of the tangent.
 #include <deal.II/base/utilities.h>
 #include <deal.II/dofs/dof_tools.h>
+#include <deal.II/lac/solver_control.h>
 
 #include <anvil/contact/contact_problem.h>
 #include <anvil/core/first_message.h>
@@ -10,6 +11,7 @@
 #include <anvil/mechanics/mechanical_problem.h>
 
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <limits>
 
@@ -297,6 +299,17 @@ namespace anvil
         try
           {
             result.linear_iterations += solve_linear_system(du);
+          }
+        catch (const SolverControl::NoConvergence &e)
+          {
+            // Work the run paid: summary.json counts it (the 2D 512² block's
+            // stalled solves were missing from its figure, session 25).
+            result.linear_iterations += e.last_step;
+            char residual[32];
+            std::snprintf(residual, sizeof residual, "%.3g", e.last_residual);
+            result.failure = "the linear solver did not converge in " + std::to_string(e.last_step) +
+                             " iterations (|r| = " + residual + " N)";
+            return result;
           }
         catch (const std::exception &e)
           {
