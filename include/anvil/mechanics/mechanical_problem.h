@@ -508,6 +508,11 @@ namespace anvil
     double largest_cell_diameter = 0;
     dealii::TrilinosWrappers::MPI::Vector previous_increment; // Δu of the last accepted step
     unsigned int last_step_iterations = 0; // Newton iterations of the last converged solve_step
+    /// Wrong predictions of convergence of the last solve_step and of the one
+    /// before, bit k: the residual's contraction at iteration k predicted the
+    /// next test would pass and it did not. Where both were wrong, the next
+    /// step does not act on the prediction at k (newton.cc, predict_next_test()).
+    unsigned int mispredicted = 0, mispredicted_before = 0;
     // Checkpoint transfer (alive between prepare and the triangulation's save).
     std::unique_ptr<dealii::parallel::distributed::SolutionTransfer<dim, dealii::TrilinosWrappers::MPI::Vector>>
                                                        checkpoint_transfer;
