@@ -20,6 +20,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <cstring>
 #include <memory>
 
 namespace anvil
@@ -159,11 +161,20 @@ namespace anvil
   }
 
   template <int dim>
-  bool MechanicalProblem<dim>::assemble(const bool with_matrix, const double time)
+  bool MechanicalProblem<dim>::assemble(const bool with_matrix, const double time,
+                                        const bool with_audit)
   {
     using namespace MechanicsAssembly;
     TimerOutput::Scope t(timer, with_matrix ? "Mechanics: assembly" : "Mechanics: residual");
     const auto start = std::chrono::steady_clock::now();
+    // Any evaluation moves the points' last update: sums kept before are
+    // then stale (audit_from_kept() compares the count).
+    ++n_evaluations;
+    if (with_audit)
+      {
+        kept_audit.evaluation = 0;
+        kept_audit.sums.fill(0.);
+      }
 
     // Several processes and no contact: the cells with rows owned elsewhere
     // (or constrained) add through OffProcessRows, the rest by CellScatter's
@@ -184,8 +195,9 @@ namespace anvil
     contact_force  = 0;
     inertia_force  = 0;
 
-    const Context<dim> context = assembly_context(with_matrix, time);
-    const bool         dynamic = context.dynamic;
+    Context<dim> context = assembly_context(with_matrix, time);
+    context.audit        = with_audit;
+    const bool dynamic   = context.dynamic;
     // The loads' time, here: the threads only evaluate them.
     for (const auto &load : boundary_conditions.pressures())
       load.value->set_time(time);
@@ -264,6 +276,11 @@ namespace anvil
           return;
         }
       max_plastic_increment = std::max(max_plastic_increment, copy.max_plastic_increment);
+      // The audit's sums point by point in cell order: compute_step_audit()'s additions.
+      if (with_audit)
+        for (const auto &terms : copy.audit)
+          for (unsigned int k = 0; k < n_audit_terms; ++k)
+            kept_audit.sums[k] += terms[k];
       if (off_process && off_process->takes(copy))
         off_process->add(copy);
       else
@@ -304,7 +321,7 @@ namespace anvil
         for (auto *v : {&system_rhs, &internal_force, &external_force, &inertia_force, &contact_force})
           v->compress(VectorOperation::add);
         setup_matrix();
-        return assemble(with_matrix, time);
+        return assemble(with_matrix, time, with_audit);
       }
 
     if (off_process)
@@ -331,7 +348,17 @@ namespace anvil
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (with_matrix && seconds > 0)
       assembly_rate = n_cells / seconds;
-    return Utilities::MPI::max(failed ? 1 : 0, mpi_communicator) == 0;
+    const bool ok = Utilities::MPI::max(failed ? 1 : 0, mpi_communicator) == 0;
+    if (with_audit && ok)
+      {
+        // What the sums belong to (audit_from_kept()): this evaluation, its
+        // step and the dof values its cells read.
+        const Epetra_MultiVector &u = solution.trilinos_vector();
+        kept_audit.solution.assign(u[0], u[0] + u.MyLength());
+        kept_audit.time_step  = current_time_step;
+        kept_audit.evaluation = n_evaluations;
+      }
+    return ok;
   }
 
   template <int dim>
@@ -411,8 +438,38 @@ namespace anvil
     energy_audit.elastic_energy = sums.back();
   }
 
+  template <int dim>
+  bool MechanicalProblem<dim>::audit_from_kept()
+  {
+    // The kept sums are the pass's when its inputs are those the evaluation
+    // read: the points' last update (no assembly since), u (bit for bit),
+    // the step (Δt of Ẇirr Δt); u_n and the committed states change only at
+    // commit and revert, which forget the kept sums. ANVIL_AUDIT_STALE (test
+    // only) takes the sums of the attempt's last audited evaluation whatever
+    // came after it: tests/energy_audit_kept.py shows ANVIL_AUDIT_CHECK then fails.
+    static_assert(std::tuple_size<decltype(kept_audit.sums)>::value == MechanicsAssembly::n_audit_terms,
+                  "kept_audit holds every AuditTerm");
+    static const bool stale = std::getenv("ANVIL_AUDIT_STALE") != nullptr;
+    const Epetra_MultiVector &u = solution.trilinos_vector();
+    const bool                here =
+      kept_audit.evaluation != 0 &&
+      (stale ||
+       (kept_audit.evaluation == n_evaluations && kept_audit.time_step == current_time_step &&
+        kept_audit.solution.size() == static_cast<std::size_t>(u.MyLength()) &&
+        std::memcmp(kept_audit.solution.data(), u[0], u.MyLength() * sizeof(double)) == 0));
+    if (Utilities::MPI::min(here ? 1 : 0, mpi_communicator) == 0)
+      return false;
+    // The same sum over the processes as compute_step_audit()'s.
+    std::vector<double> sums(kept_audit.sums.begin(), kept_audit.sums.end());
+    Utilities::MPI::sum(sums, mpi_communicator, sums);
+    std::copy(sums.begin(), sums.begin() + step_audit.size(), step_audit.begin());
+    energy_audit.elastic_energy = sums[MechanicsAssembly::audit_elastic_energy];
+    return true;
+  }
+
 #define INSTANTIATE(dim)                                                                         \
-  template bool MechanicalProblem<dim>::assemble(bool, double);                                 \
+  template bool MechanicalProblem<dim>::assemble(bool, double, bool);                           \
+  template bool MechanicalProblem<dim>::audit_from_kept();                                      \
   template MechanicsAssembly::Context<dim> MechanicalProblem<dim>::assembly_context(bool, double); \
   template MechanicsAssembly::ScratchData<dim> &MechanicalProblem<dim>::kept_scratch_data(     \
     UpdateFlags);                                                                                \

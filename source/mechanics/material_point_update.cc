@@ -268,6 +268,10 @@ namespace anvil
 
       MaterialIncrement    increment;
       PointStart           start;
+      // The audit's terms where this state may be the step's last (Context::audit).
+      const MaterialModel *model =
+        context.audit ? context.materials->at(cell->material_id()).get() : nullptr;
+      const bool kept_step = model && model->keeps_last_step();
       // The kernels take the tangent factored where the law gives it (cauchy_tangent).
       const MaterialRequest request = context.request & request_tangent ?
                                         context.request | request_factored_tangent :
@@ -345,11 +349,15 @@ namespace anvil
               increment.temperature +
               (increment.adiabatic ? response.adiabatic_temperature_increment : 0.);
           // The energy audit needs the step's last evaluation only: its terms
-          // are computed once, at commit (audit()), from this and the state.
+          // here where that may be this one, else at commit (audit(), from
+          // this and the state: the same numbers).
           (*context.plastic_work_rates)(cell, q) = response.plastic_work_rate;
           copy.max_plastic_increment =
             std::max(copy.max_plastic_increment,
                      response.equivalent_plastic_strain - point.committed_equivalent_plastic_strain());
+          if (model)
+            audit_terms(cell, *model, kept_step, q, F, F_old, p, increment, scratch.audit_kin,
+                        copy.audit[q]);
         }
       // Every point's F_n and F̄_n are kept: the key last (an update that
       // failed part-way leaves it unset, and the next one computes them again).

@@ -1,14 +1,14 @@
-// The Newton–Raphson solve of one step of MechanicalProblem: predictor,
-// linear solves, convergence tests, line search; the finite-difference check
-// of the tangent.
+// The Newton–Raphson solve of one step of MechanicalProblem: linear solves,
+// convergence tests, line search (its first iterate: predictor.cc).
 #include <deal.II/base/utilities.h>
-#include <deal.II/dofs/dof_tools.h>
 #include <deal.II/lac/solver_control.h>
 
 #include <anvil/contact/contact_problem.h>
 #include <anvil/core/first_message.h>
 #include <anvil/core/instantiate.h>
 #include <anvil/mechanics/mechanical_problem.h>
+
+#include "evaluation_kinds.h"
 
 #include <cmath>
 #include <cstdio>
@@ -18,6 +18,8 @@
 namespace anvil
 {
   using namespace dealii;
+
+  using evaluation_kinds::evaluate;
 
   namespace
   {
@@ -79,17 +81,35 @@ namespace anvil
       du.compress(VectorOperation::insert);
     }
 
-    // Distinct symbols for the two kinds of evaluation, which assemble()
-    // does not tell apart by name: callgrind counts the assemblies with the
-    // tangent apart from the residual-only ones (contrib/bench/instruction_ratio.py).
-    template <typename Assemble>
-    [[gnu::noinline]] bool tangent_assembly(const Assemble &assemble) { return assemble(true); }
-    template <typename Assemble>
-    [[gnu::noinline]] bool residual_assembly(const Assemble &assemble) { return assemble(false); }
-    template <typename Assemble>
-    bool evaluate(const bool with_matrix, const Assemble &assemble)
+    /**
+     * What the residual's contraction predicts of the next convergence test:
+     * quadratic convergence puts the next residual at r (r / r_prev)². An
+     * iteration whose prediction was wrong in the last two steps (bit it of
+     * @p distrusted) acts on it no more, until a step shows it right again:
+     * the cantilever's first update from its extrapolated predictor
+     * contracts the residual by 3e-4, the next one only by 6e-4, so the
+     * residual-only evaluations this asked for failed at 13 of its 20 steps,
+     * each followed by a full assembly at the same state.
+     */
+    struct NextTest
     {
-      return with_matrix ? tangent_assembly(assemble) : residual_assembly(assemble);
+      bool quadratic = false; // within a tenth of the tolerance: the full step, no line search
+      bool likely    = false; // that, trusted: the residual alone (K only if the test fails)
+      bool possible  = false; // within the tolerance, trusted: the evaluation sums the audit's terms
+    };
+
+    NextTest predict_next_test(const unsigned int it, const double r, const double r_previous,
+                               const double tolerance, const unsigned int distrusted)
+    {
+      const double contraction = r / std::max(r_previous, 1e-300);
+      const double predicted   = it > 0 && contraction < 0.5 ? r * contraction * contraction :
+                                                              std::numeric_limits<double>::infinity();
+      const bool   trusted     = it >= 32 || (distrusted >> it & 1u) == 0;
+      NextTest     next;
+      next.quadratic = predicted <= 0.1 * tolerance;
+      next.likely    = next.quadratic && trusted;
+      next.possible  = predicted <= tolerance && trusted;
+      return next;
     }
 
     struct ConvergenceTest
@@ -159,38 +179,6 @@ namespace anvil
   }
 
   template <int dim>
-  double MechanicalProblem<dim>::tangent_error()
-  {
-    // Random direction on the free dofs; K is assembled at the current u.
-    TrilinosWrappers::MPI::Vector du;
-    du.reinit(system_rhs);
-    TrilinosWrappers::MPI::Vector Kdu(du), r_plus(du);
-    for (const auto i : locally_owned_dofs)
-      du(i) = std::sin(1.0 + 7.3 * i);
-    du.compress(VectorOperation::insert);
-    constraints.set_zero(du);
-    assemble(true, current_time);
-    system_matrix.vmult(Kdu, du);
-    constraints.set_zero(Kdu);
-    const TrilinosWrappers::MPI::Vector u0 = owned_solution;
-    const double h = 1e-7 * std::max(1.0, u0.l2_norm()) / std::max(du.l2_norm(), 1e-300);
-    owned_solution.add(h, du);
-    solution = owned_solution;
-    assemble(false, current_time);
-    r_plus = system_rhs; // −R(u + h du)
-    owned_solution = u0;
-    owned_solution.add(-h, du);
-    solution = owned_solution;
-    assemble(false, current_time);
-    r_plus -= system_rhs; // −R(u+) + R(u−)
-    r_plus /= -2 * h;     // (R(u+) − R(u−)) / 2h ≈ K du
-    owned_solution = u0;
-    solution       = owned_solution;
-    r_plus -= Kdu;
-    return r_plus.l2_norm() / std::max(Kdu.l2_norm(), 1e-300);
-  }
-
-  template <int dim>
   typename MechanicalProblem<dim>::StepResult
   MechanicalProblem<dim>::solve_step(const double time_old, const double time_new,
                                      const bool from_last_solution)
@@ -220,7 +208,7 @@ namespace anvil
     TrilinosWrappers::MPI::Vector &du = owned_work(work_increment);
     double last_increment = -1;
     // When the next test will almost surely converge (quadratic phase, see
-    // likely_converged below), the full step's state is evaluated for its
+    // predict_next_test()), the full step's state is evaluated for its
     // residual only, and the matrix assembled only if that test fails after
     // all: the matrix of the last evaluation of a step is never used.
     bool residual_only = false;
@@ -230,10 +218,25 @@ namespace anvil
     // alone, as in the quadratic phase (K only if the test fails).
     const bool one_update_expected = last_step_iterations == 1;
     last_step_iterations           = 0;
+    // Iterations whose prediction was wrong in each of the last two steps
+    // (predict_next_test(); one alone may be a first step's start).
+    const unsigned int distrusted  = mispredicted & mispredicted_before;
+    mispredicted_before            = mispredicted;
+    mispredicted                   = 0;
+    bool quadratic_prediction      = false; // made at the last iteration, acted on or not
     bool residual_ready            = false; // R (not K) already at the iterate
-    const auto at_new = [&](const bool with_matrix) { return assemble(with_matrix, time_new); };
+    // An evaluation the next convergence test will likely accept sums the
+    // energy audit's terms of its state (kept_audit), so that commit_step()
+    // need not visit the cells again; where none did, it does (the terms cost
+    // ~0.6 of a residual evaluation: not at every evaluation).
+    bool       audit        = false;
+    bool       may_converge = false; // quadratic convergence puts the next residual below tolerance
+    const auto at_new       = [&](const bool with_matrix) {
+      return assemble(with_matrix, time_new, audit);
+    };
     for (unsigned int it = 0;; ++it)
       {
+        audit = residual_only || may_converge;
         if (!assembled && !residual_ready && !evaluate(!residual_only, at_new))
           {
             result.failure = material_failure_message();
@@ -275,6 +278,8 @@ namespace anvil
           test_convergence(parameters, r, r_previous, scale, du_scale, last_increment,
                            increment_floor, it == 0, has_jump, [&] { return residual_floor(); });
         const bool residual_ok = test.residual_ok;
+        if (quadratic_prediction && !test.converged && it <= 32)
+          mispredicted |= 1u << (it - 1);
         if (test.converged)
           {
             result.converged     = true;
@@ -289,6 +294,7 @@ namespace anvil
                              " iterations (|R| = " + Utilities::to_string(r, 3) + " N)";
             return result;
           }
+        audit = false; // (the state just tested, now with the matrix)
         if (residual_only && !assembled && !evaluate(true, at_new))
           {
             result.failure = material_failure_message();
@@ -321,17 +327,18 @@ namespace anvil
         last_increment     = du.l2_norm();
         result.increments.push_back(last_increment);
 
-        // Quadratic convergence predicts the next residual as r (r / r_prev)²;
-        // a tenth of the tolerance below that, the full step is taken without
-        // the line search's trial (which accepts α = 1 there anyway).
-        const double contraction      = r / std::max(r_previous, 1e-300);
-        const bool   likely_converged = it > 0 && contraction < 0.5 &&
-                                      r * contraction * contraction <=
-                                        0.1 * std::max(parameters.absolute_residual_tolerance,
-                                                       parameters.residual_tolerance * scale);
+        // A predicted convergence takes the full step without the line
+        // search's trial (which accepts α = 1 there anyway).
+        const NextTest next = predict_next_test(
+          it, r, r_previous,
+          std::max(parameters.absolute_residual_tolerance, parameters.residual_tolerance * scale),
+          distrusted);
+        quadratic_prediction = next.quadratic;
+        may_converge         = next.possible;
         // The first update carries the boundary jump: take it whole.
         // Near convergence (and on the round-off floor) s(α) is noise.
-        const bool full_step = (it == 0 && has_jump) || residual_ok || likely_converged;
+        const bool full_step = (it == 0 && has_jump) || residual_ok || next.quadratic;
+        audit = true; // (a step like the last, converged at its first update)
         if (it == 0 && one_update_expected && !full_step && parameters.line_search)
           residual_ready = full_step_on_residual(owned_solution, solution, du, system_rhs,
                                                  owned_work(work_start),
@@ -348,135 +355,18 @@ namespace anvil
             // the scene may ask for a stricter search; near it s(α) is noise.
             const double bound = r > 0.1 * result.residuals.front() ?
                                    parameters.line_search_far_bound : 0.8;
-            result.line_search_steps.push_back(line_search(du, full_step, time_new, assembled, bound));
+            result.line_search_steps.push_back(
+              line_search(du, full_step, time_new, assembled, bound, may_converge));
           }
         residual_only =
-          (residual_ok || likely_converged || (it == 0 && one_update_expected)) && !assembled;
+          (residual_ok || next.likely || (it == 0 && one_update_expected)) && !assembled;
       }
-  }
-
-  template <int dim>
-  bool MechanicalProblem<dim>::predict(const double time_old, const double time_new,
-                                       const bool from_last_solution, bool *assembled)
-  {
-    // Predictor: the first Newton iteration starts from the committed
-    // configuration and imposes the jump of the prescribed displacements as
-    // inhomogeneous constraints, so the whole body follows the boundary
-    // (moving only the boundary nodes would invert the cells next to it when
-    // the jump exceeds their size).
-    //
-    // The free dofs start from the last step's increment scaled to this step
-    // (linear extrapolation in time), which puts yielding points on their
-    // plastic branch from the first iteration; if that inverts an element,
-    // from the committed configuration.
-    // Again on the same step (iterated staggered): from the last solution,
-    // which already satisfies the step's boundary values.
-    if (!from_last_solution)
-      owned_solution = owned_old_solution;
-    const bool extrapolate =
-      !from_last_solution && parameters.extrapolate && previous_time_step > 0;
-    if (extrapolate)
-      owned_solution.add(current_time_step / previous_time_step, previous_increment);
-    solution = owned_solution;
-    build_predictor_constraints(time_old, time_new);
-    if (extrapolate)
-      {
-        // The check of the extrapolated state is the first iteration's
-        // assembly when the caller takes it (@p assembled): the same state
-        // and constraints.
-        const bool with_matrix = assembled != nullptr;
-        if (evaluate(with_matrix, [&](bool m) { return assemble(m, time_new); }))
-          {
-            if (assembled)
-              *assembled = true;
-          }
-        else
-          {
-            owned_solution = owned_old_solution;
-            solution       = owned_solution;
-            build_predictor_constraints(time_old, time_new); // the jump from u_n
-          }
-      }
-    double largest_jump = 0;
-    for (const auto &line : predictor_constraints.get_lines())
-      largest_jump = std::max(largest_jump, std::abs(line.inhomogeneity));
-    return Utilities::MPI::max(largest_jump, mpi_communicator) > 0;
-  }
-
-  template <int dim>
-  void MechanicalProblem<dim>::build_predictor_constraints(const double time_old,
-                                                           const double time_new)
-  {
-    // The prescribed dofs and their points once per numbering, the
-    // functions evaluated at every step (BoundaryConditions::Points).
-    KeptPredictor &kept = kept_predictor;
-    if (!kept.found)
-      kept.points = boundary_conditions.points(dof_handler);
-    boundary_conditions.values(kept.points, time_new, kept.values);
-    boundary_conditions.velocity_increments(kept.points, time_old, time_new, kept.increments);
-    const auto &displacement = kept.points.displacement;
-    const auto &velocity     = kept.points.velocity;
-    active_constraints       = &predictor_constraints;
-    if (kept.lines_kept)
-      {
-        // The same lines as the last build (hanging nodes, axis, supports,
-        // remote), closed, none with entries: only the jumps are new.
-        for (unsigned int k = 0; k < displacement.size(); ++k)
-          if (kept.displacement_line[k])
-            predictor_constraints.set_inhomogeneity(displacement[k].index,
-                                                    kept.values[k] - solution(displacement[k].index));
-        for (unsigned int k = 0; k < velocity.size(); ++k)
-          if (kept.velocity_line[k])
-            {
-              const auto dof = velocity[k].index;
-              predictor_constraints.set_inhomogeneity(dof, kept.increments[k] + old_solution(dof) -
-                                                             solution(dof));
-            }
-        return;
-      }
-
-    predictor_constraints.clear();
-    predictor_constraints.reinit(constraint_lines);
-    DoFTools::make_hanging_node_constraints(dof_handler, predictor_constraints);
-    make_axis_constraints(predictor_constraints);
-    kept.displacement_line.assign(displacement.size(), 0);
-    kept.velocity_line.assign(velocity.size(), 0);
-    for (unsigned int k = 0; k < displacement.size(); ++k)
-      {
-        const auto dof = displacement[k].index;
-        if (locally_relevant_dofs.is_element(dof) && !predictor_constraints.is_constrained(dof))
-          {
-            predictor_constraints.add_line(dof);
-            predictor_constraints.set_inhomogeneity(dof, kept.values[k] - solution(dof));
-            kept.displacement_line[k] = 1;
-          }
-      }
-    for (unsigned int k = 0; k < velocity.size(); ++k)
-      {
-        const auto dof = velocity[k].index;
-        if (locally_relevant_dofs.is_element(dof) && !predictor_constraints.is_constrained(dof))
-          {
-            predictor_constraints.add_line(dof);
-            predictor_constraints.set_inhomogeneity(dof, kept.increments[k] + old_solution(dof) -
-                                                           solution(dof));
-            kept.velocity_line[k] = 1;
-          }
-      }
-    add_remote_constraints(predictor_constraints);
-    predictor_constraints.close();
-    // Lines with masters (hanging nodes) take their masters' jumps in
-    // close(): those are built at every step.
-    kept.found      = true;
-    kept.lines_kept = true;
-    for (const auto &line : predictor_constraints.get_lines())
-      if (!line.entries.empty())
-        kept.lines_kept = false;
   }
 
   template <int dim>
   double MechanicalProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &du,
                                             const bool full_step, const double time_new,
-                                            bool &assembled, const double bound)
+                                            bool &assembled, const double bound, const bool audit)
   {
     // Line search on the energy norm s(α) = δu · R(u + α δu) (Crisfield):
     // the residual norm itself grows in the first iterations of large
@@ -498,7 +388,8 @@ namespace anvil
         assembled = false;
         if (!parameters.line_search || ls == 5 || full_step)
           break;
-        const bool ok = evaluate(ls == 0, [&](bool m) { return assemble(m, time_new); });
+        const bool ok =
+          evaluate(ls == 0, [&](bool m) { return assemble(m, time_new, audit && ls == 0); });
         assembled     = ok && ls == 0;
         if (!ok)
           {
@@ -578,6 +469,7 @@ namespace anvil
   template <int dim>
   void MechanicalProblem<dim>::revert_step()
   {
+    kept_audit.evaluation = 0; // the points' last update is forgotten
     for (auto &p : points.raw())
       if (p)
         p->revert();
@@ -588,13 +480,10 @@ namespace anvil
 #define INSTANTIATE(dim)                                                                         \
   template std::string  MechanicalProblem<dim>::material_failure_message() const;                \
   template double       MechanicalProblem<dim>::residual_norm() const;                           \
-  template double MechanicalProblem<dim>::tangent_error();                                       \
   template typename MechanicalProblem<dim>::StepResult MechanicalProblem<dim>::solve_step(       \
     double, double, bool);                                                                       \
-  template bool   MechanicalProblem<dim>::predict(double, double, bool, bool *);                 \
-  template void   MechanicalProblem<dim>::build_predictor_constraints(double, double);          \
   template double MechanicalProblem<dim>::line_search(const TrilinosWrappers::MPI::Vector &,     \
-                                                      bool, double, bool &, double);             \
+                                                      bool, double, bool &, double, bool);       \
   template void   MechanicalProblem<dim>::revert_step();                                          \
   template bool   MechanicalProblem<dim>::begin_step(double, double);                            \
   template bool   MechanicalProblem<dim>::predictor_update(unsigned int &);                      \

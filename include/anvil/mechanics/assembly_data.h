@@ -84,6 +84,9 @@ namespace anvil
       PointData<double>                         *node_masses              = nullptr;
       /// The points' start-of-step kinematics per cell (null: computed at every update).
       StepStart                                 *step_start               = nullptr;
+      /// The update also computes the energy audit's terms (CopyData::audit):
+      /// an evaluation whose state may be the one the step commits.
+      bool                                       audit                    = false;
 
       bool has_temperature_field() const { return temperature_field && *temperature_field; }
     };
@@ -186,8 +189,8 @@ namespace anvil
       unsigned int cell_index = 0; // the cell's active_cell_index()
 
       /// Per point, the energy audit's terms of the step (AuditTerm; filled
-      /// by MaterialPointUpdate::audit() at commit, summed point by point in
-      /// cell order).
+      /// by MaterialPointUpdate::update() when Context::audit, or by audit()
+      /// at commit; summed point by point in cell order).
       std::vector<std::array<double, n_audit_terms>> audit;
       double              max_plastic_increment = 0;
 

@@ -324,7 +324,8 @@ namespace anvil
   private:
     void setup_quadrature_point_data();
     /// Assemble −R into system_rhs (and K if @p with_matrix); false if an element inverted.
-    bool assemble(bool with_matrix, double time);
+    /// With @p with_audit the points' energy audit terms are summed too (kept_audit).
+    bool assemble(bool with_matrix, double time, bool with_audit = false);
     /// What the assembly's kernels read (assembly_data.h).
     MechanicsAssembly::Context<dim> assembly_context(bool with_matrix, double time);
     /// kept_scratch for these cell update flags (made anew if they differ), kept_copy.
@@ -343,8 +344,9 @@ namespace anvil
     /// search); leaves the solution at u + α du. @p full_step: α = 1.
     /// @p assembled: set true if K and R are left assembled at that solution.
     /// @p bound: α = 1 is kept when |s(1)| <= bound |s(0)|, else searched to it.
+    /// @p audit: the full step's evaluation sums the audit's terms (kept_audit).
     double line_search(const dealii::TrilinosWrappers::MPI::Vector &du, bool full_step,
-                       double time_new, bool &assembled, double bound);
+                       double time_new, bool &assembled, double bound, bool audit = false);
     unsigned int solve_linear_system(dealii::TrilinosWrappers::MPI::Vector &du);
     /// Some material point (any process) has a plastic strain: AMG's "automatic" settings.
     bool has_flowed_plastically() const;
@@ -461,9 +463,30 @@ namespace anvil
     double max_plastic_increment = 0;
     /// The step's audit sums over the points (MechanicsAssembly::CopyData::audit).
     std::array<double, 6> step_audit{}; // MechanicsAssembly::n_audit_terms
-    /// step_audit from the state of the last assembly (commit_step(): the
-    /// audit needs the step's last evaluation only, so no assembly computes it).
+    /// step_audit and the state's elastic energy by a pass of their own over
+    /// the cells at the state of the last assembly (commit_step(), where no
+    /// evaluation kept them: kept_audit).
     void compute_step_audit();
+    /**
+     * The audit's sums (every AuditTerm, this process's points in cell order)
+     * as an evaluation asked for them left them (assemble(..., true)), and
+     * what makes them the committed state's: no assembly since (the points'
+     * stresses, Ẇirr and temperatures are that evaluation's), the same u to
+     * the bit, the same step. commit_step() sums them (audit_from_kept())
+     * instead of compute_step_audit()'s pass; anything else falls back to it.
+     */
+    struct KeptAudit
+    {
+      std::array<double, 7> sums{};      // MechanicsAssembly::n_audit_terms
+      unsigned long         evaluation = 0; // n_evaluations at that assembly (0: none kept)
+      double                time_step  = 0;
+      std::vector<double>   solution;       // the ghosted u's local values it read
+    };
+    KeptAudit     kept_audit;
+    unsigned long n_evaluations = 0; // assemble() calls, failed ones too
+    /// Collective: step_audit and the elastic energy from kept_audit if it is
+    /// the committed state's on every process (true), else nothing (false).
+    bool audit_from_kept();
     /// Test only (ANVIL_AUDIT_OMIT=term): 1 + the AuditTerm left out of the sums, 0 none.
     unsigned int audit_omission = 0;
     Energy energy_audit;
@@ -486,6 +509,11 @@ namespace anvil
     double largest_cell_diameter = 0;
     dealii::TrilinosWrappers::MPI::Vector previous_increment; // Δu of the last accepted step
     unsigned int last_step_iterations = 0; // Newton iterations of the last converged solve_step
+    /// Wrong predictions of convergence of the last solve_step and of the one
+    /// before, bit k: the residual's contraction at iteration k predicted the
+    /// next test would pass and it did not. Where both were wrong, the next
+    /// step does not act on the prediction at k (newton.cc, predict_next_test()).
+    unsigned int mispredicted = 0, mispredicted_before = 0;
     // Checkpoint transfer (alive between prepare and the triangulation's save).
     std::unique_ptr<dealii::parallel::distributed::SolutionTransfer<dim, dealii::TrilinosWrappers::MPI::Vector>>
                                                        checkpoint_transfer;
