@@ -12,6 +12,13 @@
 //     unitary), also across restarts, so one cycle of m = 28 reduces the
 //     residual by at least 0.97^28 = 0.43 < 1/2: the stop never fires and
 //     GMRES reaches 1e-8 within ln(1e-8)/ln(0.97) = 605 iterations.
+//   - K = I ⊕ S (two blocks of n), b = e_0 + 0.3 f_0 (f_0 the first unit
+//     vector of the shift block): the I part is solved at once, while every
+//     K x of the first cycles is orthogonal to f_0 (the shift block's Krylov
+//     vectors reach f_0 only after wrapping round its n = 200 indices), so
+//     |r| falls from 1.04 to ~0.3 in the first cycle (halved: GCRO-DR
+//     continues) and then stays there. Expected: NoConvergence within two
+//     more cycles' worth of stall checks (28 + 2 x 56), not at the cap.
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/mpi.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -30,6 +37,25 @@ using namespace dealii;
 
 namespace
 {
+  /// I ⊕ S on 2n rows: the identity on the first n, the cyclic shift on the last n.
+  void fill_split(TrilinosWrappers::SparseMatrix &K, const unsigned int n)
+  {
+    const IndexSet         owned = complete_index_set(2 * n);
+    DynamicSparsityPattern dsp(2 * n, 2 * n, owned);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        dsp.add(i, i);
+        dsp.add(n + (i + 1) % n, n + i);
+      }
+    K.reinit(owned, owned, dsp, MPI_COMM_WORLD);
+    for (unsigned int i = 0; i < n; ++i)
+      {
+        K.set(i, i, 1.);
+        K.set(n + (i + 1) % n, n + i, 1.);
+      }
+    K.compress(VectorOperation::insert);
+  }
+
   /// diagonal I + rho S, or S alone if identity is false.
   void fill(TrilinosWrappers::SparseMatrix &K, const unsigned int n, const bool identity, const double rho)
   {
@@ -101,5 +127,31 @@ int main(int argc, char **argv)
   check(steps > 2 * settings.restart && steps <= 605,
         "K = I + 0.97 S: " + std::to_string(steps) + " iterations (bound 605, more than two cycles)");
   check(r.l2_norm() <= 1e-8 * b.l2_norm(), "K = I + 0.97 S: |b - K x| / |b| = " + std::to_string(r.l2_norm()));
+
+  // I ⊕ S: halved in the first cycle, then stalled inside GCRO-DR's continuation.
+  TrilinosWrappers::SparseMatrix split, I2;
+  fill_split(split, n);
+  fill(I2, 2 * n, true, 0.);
+  const auto                    amg2 = anvil::build_amg(I2, {}, settings);
+  const IndexSet                owned2 = complete_index_set(2 * n);
+  TrilinosWrappers::MPI::Vector b2(owned2, MPI_COMM_WORLD), x2(owned2, MPI_COMM_WORLD);
+  b2[0] = 1.;
+  b2[n] = 0.3;
+  b2.compress(VectorOperation::insert);
+  thrown  = false;
+  stopped = 0;
+  try
+    {
+      anvil::solve_gmres(split, x2, b2, *amg2, settings);
+    }
+  catch (const SolverControl::NoConvergence &e)
+    {
+      thrown  = true;
+      stopped = e.last_step;
+    }
+  check(thrown, "K = I + S split: does not converge");
+  check(stopped > settings.restart && stopped <= 5 * settings.restart,
+        "K = I + S split: the continuation stopped at step " + std::to_string(stopped) +
+          " (past the first cycle of 28, within 28 + 2 x 56), not at the cap of 1000");
   return check.finish();
 }

@@ -40,6 +40,7 @@ expect "bad AMG Chebyshev ratio" "AMG Chebyshev ratio.*expected 'automatic' or a
 expect "bad AMG isochoric modes" "--set 'Mechanics/Linear solver/AMG isochoric modes=sometimes'.*automatic\|true\|false" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/AMG isochoric modes=sometimes"
 expect "bad AMG aggregation threshold" "--set 'Mechanics/Linear solver/AMG aggregation threshold=2'" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/AMG aggregation threshold=2"
 expect "bad AMG coarse size" "--set 'Mechanics/Linear solver/AMG coarse size=0'" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/AMG coarse size=0"
+expect "bad AMG cycle" "--set 'Mechanics/Linear solver/AMG cycle=F'.*automatic\|V\|W" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/AMG cycle=F"
 expect "bad AMG prolongator" "--set 'Mechanics/Linear solver/AMG prolongator=smooth'" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/AMG prolongator=smooth"
 expect "bad GMRES restart" "--set 'Mechanics/Linear solver/GMRES restart=0'" "$anvil" "$src/prm/cantilever.prm" --set "Mechanics/Linear solver/GMRES restart=0"
 expect "unknown option"     "unknown option '--frobnicate'"               "$anvil" "$src/prm/cantilever.prm" --frobnicate

@@ -217,6 +217,19 @@ namespace anvil
     settings.aggregation_threshold = parameters.amg_aggregation_threshold;
     settings.coarse_size           = parameters.amg_coarse_size;
     settings.plain_aggregation     = parameters.amg_plain_aggregation;
+    // The plastic tangent's low-energy isochoric fields reach the coarse levels
+    // only partly through each level's smoother: in 2D a V-cycle's count grows
+    // with the hierarchy's depth (plastic block 128² 23.6, 256² 28.6, 512² 37.4
+    // per solve), a W-cycle's much less (19.8, 20.9, 27.7). Its second visits
+    // of level 1 pay from ~10^5 DoFs (256²: the same CPU, 512²: -14 %), not
+    // below (two_blocks refined 3 times, 52 164 DoFs: +12 % solve time, the
+    // same count). In 3D the coarse levels carry 11 modes per aggregate and a
+    // second visit costs more than it saves (20³: 21.5 -> 17.9 Krylov per
+    // Newton, +8 % solve time). doc/linear_solver.md, session 25.
+    constexpr types::global_dof_index w_cycle_min_dofs = 100000;
+    settings.w_cycle = parameters.amg_cycle == "automatic"
+                         ? (isochoric && dim == 2 && dof_handler.n_dofs() >= w_cycle_min_dofs)
+                         : parameters.amg_cycle == "W";
     const auto modes     = [&]() { return rigid_body_modes(mapping, dof_handler, &solution, isochoric); };
     if (const char *folder = std::getenv("ANVIL_KRYLOV_DUMP"))
       dump_system(folder, system_matrix.trilinos_matrix(), system_rhs,
@@ -227,7 +240,8 @@ namespace anvil
     const auto log = [&](const unsigned int n, const char *outcome) {
       if (std::getenv("ANVIL_KRYLOV_LOG") && Utilities::MPI::this_mpi_process(mpi_communicator) == 0)
         std::cout << "Krylov: " << n << outcome << (isochoric ? " isochoric" : " rigid") << ", Chebyshev "
-                  << settings.smoother_degree << " ratio " << settings.chebyshev_ratio << std::endl;
+                  << settings.smoother_degree << " ratio " << settings.chebyshev_ratio
+                  << (settings.w_cycle ? ", W" : ", V") << std::endl;
     };
     MeshRecord                &record = mesh_record(dof_handler);
     const PreconditionerChoice choice =

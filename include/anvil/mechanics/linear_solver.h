@@ -101,6 +101,10 @@ namespace anvil
     /// Galerkin products are ~30 % of the smoothed one's memory in 3D at
     /// 1.6-1.8x the Krylov iterations (doc/memory.md, session 18).
     bool         plain_aggregation = false;
+    /// A W-cycle (ML's "prec type" MGW, MueLu's "cycle type" W): each coarse
+    /// level is visited twice per visit of the finer one. Holds the 2D plastic
+    /// count as the hierarchy deepens (doc/linear_solver.md, session 25).
+    bool         w_cycle = false;
     unsigned int components     = 1;     // dofs per node, contiguous ("PDE equations")
     /// ReusedAMG: iterations allowed to a kept hierarchy, in units of its
     /// first solve's (0: a new hierarchy for every solve).

@@ -103,6 +103,7 @@ namespace anvil
       std::string  amg_isochoric_modes          = "automatic"; // near-null space += u = G (x − c)
       double       amg_aggregation_threshold    = 0.02;
       unsigned int amg_coarse_size              = 2000;
+      std::string  amg_cycle                    = "automatic"; // automatic | V | W (linear_solver.cc)
       bool         amg_plain_aggregation        = false; // "AMG prolongator = plain"
       std::string  amg_package                  = "ML";  // ML | MueLu (the module libanvil-muelu.so)
       unsigned int direct_solver_limit          = 200000;
