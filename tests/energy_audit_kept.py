@@ -17,7 +17,8 @@ largest, and prints the difference; a step that falls back prints "pass".
     fail and are assembled again), the necking bar whose first step of half
     the stroke is cut back (reverted attempts), the tube (dynamics, contact,
     line search, adiabatic split), two blocks (contact's active set) on one
-    and two processes, the thermal necking bar iterated staggered (the step
+    and two processes, the twisted bar (3D: no start-of-step table), the
+    thermal necking bar as shipped (adiabatic split), iterated staggered (the step
     solved again from the last solution) and monolithic (the coupled Newton
     evaluates outside the mechanics' own: the pass). Every step compared, the
     kept sums equal to the bit; the mechanics-driven scenes take them at most
@@ -47,6 +48,8 @@ CASES = [
     ("tube", "prm/tube_impact.prm", ["Time/End time=1e-4"], 1, True),
     ("two_blocks", "prm/two_blocks.prm", ["Time/End time=1e-3"], 1, True),
     ("two_blocks_np2", "prm/two_blocks.prm", ["Time/End time=1e-3"], 2, True),
+    ("twisted_bar_3d", "prm/twisted_bar_3d.prm", [], 1, True),
+    ("adiabatic", "prm/necking_bar_thermal.prm", ["Time/End time=1"], 1, True),
     ("staggered", "prm/necking_bar_thermal.prm",
      ["Physics/Coupling=iterated staggered", "Time/End time=1"], 1, True),
     ("monolithic", "prm/necking_bar_thermal.prm",
