@@ -1,5 +1,6 @@
 """The energy audit's elastic energy summed at the audit's points
-(compute_step_audit: W = p^2/2K(T) + s:s/4G(T) at the points' stresses and
+(the audit's terms, from the step's last evaluation or compute_step_audit's
+pass: W = p^2/2K(T) + s:s/4G(T) at the points' stresses and
 temperatures, times J dV as the audit computes them) against the same
 integral by FEValues on the displacement (elastic_strain_energy(), the route
 used before): with ANVIL_AUDIT_CHECK set, every accepted step prints both,
