@@ -218,6 +218,10 @@ namespace anvil
       smoothing.middle_degree = std::max(1, std::atoi(s));
     if (const char *s = std::getenv("ANVIL_GMG_RATIO"))
       smoothing.ratio = std::atof(s);
+    // Single-precision smoothing by nodal blocks (float_block_matrix.h);
+    // ANVIL_GMG_PRECISION=double keeps Epetra's matrices (benchmarks, tests).
+    const char *precision   = std::getenv("ANVIL_GMG_PRECISION");
+    smoothing.single_blocks = precision && std::string(precision) == "double" ? 0 : dim;
     // Benchmarks and tests: ANVIL_GMG_LEVELS=n asks for n levels (as many as
     // the mesh allows), else the automatic rule (geometric_coarse_space.h).
     unsigned int max_levels = 16, min_rows = min_rows_to_coarsen;

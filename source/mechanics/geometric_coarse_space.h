@@ -36,10 +36,12 @@
 class Epetra_CrsMatrix;
 class Epetra_Map;
 class Epetra_MultiVector;
+class Epetra_Operator;
 class Ifpack_Chebyshev;
 
 namespace anvil
 {
+  class FloatBlockMatrix;
   class KluFactorization;
 
   /**
@@ -173,6 +175,9 @@ namespace anvil
     /// against 26.0 / 29.1 with two; doc/linear_solver.md, session 22).
     unsigned int middle_degree = 8;
     double       ratio         = 30;
+    /// The smoothed levels' products in single precision by nodal blocks of
+    /// this size (float_block_matrix.h; dim, or 0: Epetra's doubles).
+    unsigned int single_blocks = 0;
   };
 
   /// How the coarsest level is solved: @p ml_cycles ML V-cycles (a fixed
@@ -214,6 +219,11 @@ namespace anvil
     {
       const Epetra_CrsMatrix                     *A = nullptr;
       std::unique_ptr<Epetra_CrsMatrix>           kept_A; // middle levels
+      /// A in single precision (float_block_matrix.h): the smoother's and
+      /// the cycle's products; a middle level's kept_A is then freed.
+      std::unique_ptr<FloatBlockMatrix>           single;
+      /// What the smoother and the cycle's residuals multiply by.
+      const Epetra_Operator                      *op = nullptr;
       const Epetra_CrsMatrix                     *P = nullptr;
       std::unique_ptr<Ifpack_Chebyshev>           smoother;
       mutable std::unique_ptr<Epetra_MultiVector> b, y, r, t;

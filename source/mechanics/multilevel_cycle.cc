@@ -10,6 +10,7 @@
 
 #include <anvil/core/klu_factorization.h>
 
+#include "float_block_matrix.h"
 #include "geometric_coarse_space.h"
 
 
@@ -28,16 +29,22 @@ namespace anvil
 
   namespace
   {
-    /// Chebyshev of @p degree on D⁻¹A over [λ_max/ratio, λ_max].
-    std::unique_ptr<Ifpack_Chebyshev> chebyshev(const Epetra_CrsMatrix &A, const unsigned int degree, const double ratio)
+    /// Chebyshev of @p degree on D⁻¹A over [λ_max/ratio, λ_max], its
+    /// products by @p op (A, or A in single precision).
+    std::unique_ptr<Ifpack_Chebyshev> chebyshev(const Epetra_CrsMatrix &A, const Epetra_Operator &op,
+                                                const unsigned int degree, const double ratio)
     {
       Epetra_Vector inverse_diagonal(A.RowMap());
       A.ExtractDiagonalCopy(inverse_diagonal);
       inverse_diagonal.Reciprocal(inverse_diagonal);
       double lambda_max = 0;
-      Ifpack_Chebyshev::PowerMethod(A, inverse_diagonal, 10, lambda_max);
-      auto smoother = std::make_unique<Ifpack_Chebyshev>(&A);
+      Ifpack_Chebyshev::PowerMethod(op, inverse_diagonal, 10, lambda_max);
+      const bool             own = &op == static_cast<const Epetra_Operator *>(&A);
+      auto                   smoother = own ? std::make_unique<Ifpack_Chebyshev>(&A) : std::make_unique<Ifpack_Chebyshev>(&op);
       Teuchos::ParameterList list;
+      // An operator that is not Epetra's matrix has no diagonal of its own.
+      if (!own)
+        list.set("chebyshev: operator inv diagonal", &inverse_diagonal);
       list.set("chebyshev: degree", static_cast<int>(degree));
       list.set("chebyshev: ratio eigenvalue", ratio);
       // The power method's estimate from below, raised as ML does.
@@ -98,14 +105,26 @@ namespace anvil
 
     for (unsigned int l = 0; l < levels.size(); ++l)
       {
-        Level &level   = levels[l];
-        level.smoother = chebyshev(*level.A, l == 0 ? smoothing.fine_degree : smoothing.middle_degree, smoothing.ratio);
-        level.r        = std::make_unique<Epetra_MultiVector>(level.A->RowMap(), 1);
-        level.t        = std::make_unique<Epetra_MultiVector>(level.A->RowMap(), 1);
+        Level &level = levels[l];
+        if (smoothing.single_blocks > 0)
+          level.single = FloatBlockMatrix::make(*level.A, smoothing.single_blocks);
+        level.op       = level.single ? static_cast<const Epetra_Operator *>(level.single.get()) : level.A;
+        level.smoother = chebyshev(*level.A, *level.op, l == 0 ? smoothing.fine_degree : smoothing.middle_degree,
+                                   smoothing.ratio);
+        // A middle level's double matrix served its coarser level's
+        // Galerkin product and the diagonal: the float copy does the rest.
+        if (level.single && level.kept_A)
+          {
+            level.kept_A.reset();
+            level.A = nullptr;
+          }
+        const Epetra_Map &rows = level.op->OperatorRangeMap();
+        level.r                = std::make_unique<Epetra_MultiVector>(rows, 1);
+        level.t                = std::make_unique<Epetra_MultiVector>(rows, 1);
         if (l > 0)
           {
-            level.b = std::make_unique<Epetra_MultiVector>(level.A->RowMap(), 1);
-            level.y = std::make_unique<Epetra_MultiVector>(level.A->RowMap(), 1);
+            level.b = std::make_unique<Epetra_MultiVector>(rows, 1);
+            level.y = std::make_unique<Epetra_MultiVector>(rows, 1);
           }
       }
     const IndexSet coarse_owned = coarse_matrix.locally_owned_range_indices();
@@ -130,7 +149,7 @@ namespace anvil
   {
     const Level &level = levels[l];
     level.smoother->ApplyInverse(b, y);
-    level.A->Apply(y, *level.r);
+    level.op->Apply(y, *level.r);
     level.r->Update(1., b, -1.);
     if (l + 1 == levels.size())
       {
@@ -160,7 +179,7 @@ namespace anvil
         level.P->Multiply(false, *next.y, *level.t);
       }
     y.Update(1., *level.t, 1.);
-    level.A->Apply(y, *level.r);
+    level.op->Apply(y, *level.r);
     level.r->Update(1., b, -1.);
     level.smoother->ApplyInverse(*level.r, *level.t);
     y.Update(1., *level.t, 1.);

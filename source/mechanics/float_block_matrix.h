@@ -1,0 +1,79 @@
+#pragma once
+
+// A single-precision copy of a smoothed level's matrix, stored by nodal
+// blocks, for the multilevel cycle's smoothers and residuals
+// (geometric_coarse_space.h). Why: at 1 M DoFs the cycle streams K nine
+// times per GMRES iteration from memory, and Epetra's rows cost 12 bytes an
+// entry (value and column index); two ranks share one memory bus, so the
+// solve, not the assembly, held np 2's speed-up below 1.7 (issue 15). A
+// dim × dim block of floats with one column index is 4.4 bytes an entry.
+// The smoother is a preconditioner inside double-precision GMRES, whose own
+// products stay on K: the answer is GMRES's to its tolerance, and the
+// cycle's rounding (float's 6e-8) is far below what the smoother removes
+// (doc/linear_solver.md, session 26).
+
+#include <memory>
+#include <vector>
+
+DEAL_II_DISABLE_EXTRA_DIAGNOSTICS
+#include <Epetra_Operator.h>
+DEAL_II_ENABLE_EXTRA_DIAGNOSTICS
+
+class Epetra_CrsMatrix;
+class Epetra_Import;
+class Epetra_Map;
+class Epetra_Comm;
+class Epetra_MultiVector;
+class Epetra_Vector;
+
+namespace anvil
+{
+  /**
+   * y = A x with A's entries rounded to float, x and y in double. Made by
+   * make() only when A has a nodal block structure of size @p block: the
+   * owned rows and the column map come in runs of @p block consecutive
+   * global indices starting at a multiple of @p block (deal.II's Q1^dim
+   * numbering, one vertex's dofs together; the coarse spaces' dim · node
+   * + component). Otherwise make() returns nullptr and the caller keeps A.
+   * A may be destroyed after make().
+   */
+  class FloatBlockMatrix : public Epetra_Operator
+  {
+  public:
+    static std::unique_ptr<FloatBlockMatrix> make(const Epetra_CrsMatrix &A, unsigned int block);
+    ~FloatBlockMatrix() override;
+
+    int Apply(const Epetra_MultiVector &X, Epetra_MultiVector &Y) const override;
+    int ApplyInverse(const Epetra_MultiVector &, Epetra_MultiVector &) const override { return -1; }
+    int SetUseTranspose(bool) override { return -1; }
+    double NormInf() const override { return 0; }
+    const char *Label() const override { return "anvil::FloatBlockMatrix"; }
+    bool UseTranspose() const override { return false; }
+    bool HasNormInf() const override { return false; }
+    const Epetra_Comm &Comm() const override;
+    const Epetra_Map  &OperatorDomainMap() const override;
+    const Epetra_Map  &OperatorRangeMap() const override;
+
+    /// Bytes held (the blocks, their columns and the import vector).
+    std::size_t memory_consumption() const;
+
+  private:
+    explicit FloatBlockMatrix(const Epetra_CrsMatrix &A, unsigned int block);
+    template <int B>
+    void multiply(const double *x, double *y) const;
+
+    unsigned int block;
+    /// A's maps and import, copied: a middle level's A is freed once this
+    /// copy is made (only the coarser level's Galerkin product needed it).
+    std::unique_ptr<Epetra_Map>    domain, column_map;
+    std::unique_ptr<Epetra_Import> importer;
+    /// Block row i's blocks: [row_start[i], row_start[i + 1]).
+    std::vector<int>   row_start;
+    /// A block's column: its first column's local index / block.
+    std::vector<int>   columns;
+    /// block × block floats per block, row-major.
+    std::vector<float> values;
+    /// x on A's column map (np > 1: owned and ghost entries).
+    mutable std::unique_ptr<Epetra_Vector> x_columns;
+  };
+} // namespace anvil

@@ -1,0 +1,139 @@
+// The single-precision nodal-block copy of a level's matrix
+// (source/mechanics/float_block_matrix.cc) multiplies as Epetra's double
+// matrix does, up to rounding its entries to float: row by row,
+// |F x − K x|_i ≤ u Σ_j |K_ij x_j| (u = 2⁻²⁴, float's unit roundoff; the
+// sums themselves are in double, ~1e-16), on the 3D elastic block's K
+// (deal.II's Q1³ numbering) and on its Galerkin coarse operator (the coarse
+// spaces' dim · node + component numbering), on 1 and 2 processes (the
+// ghost columns come through K's import). The copy must be the float path
+// (some row differs from K x) and hold ≤ 5 bytes per stored entry
+// (Epetra: 12). A matrix whose rows do not come in nodes (an odd row
+// count; on two processes one rank's share alone) is refused on every
+// process, so that GMRES sees one operator.
+#include <deal.II/base/mpi.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+
+#include "../source/mechanics/float_block_matrix.h"
+#include "../source/mechanics/geometric_coarse_space.h"
+#include "check.h"
+#include "mechanics_fixture.h"
+
+DEAL_II_DISABLE_EXTRA_DIAGNOSTICS
+#include <Epetra_CrsMatrix.h>
+#include <Epetra_Map.h>
+#include <Epetra_Vector.h>
+DEAL_II_ENABLE_EXTRA_DIAGNOSTICS
+
+#include <cmath>
+#include <sstream>
+
+using namespace dealii;
+
+namespace
+{
+  constexpr double unit_roundoff = 5.9604644775390625e-08; // 2^-24
+
+  /// The largest |F x − K x|_i / (u Σ_j |K_ij x_j|) over all rows of all
+  /// processes, and whether any row differs at all.
+  std::pair<double, bool> worst_ratio(const Epetra_CrsMatrix &K, const anvil::FloatBlockMatrix &F)
+  {
+    Epetra_Vector x(K.OperatorDomainMap()), y(K.OperatorRangeMap()), z(K.OperatorRangeMap());
+    Epetra_Vector bound(K.OperatorRangeMap());
+    for (int i = 0; i < x.MyLength(); ++i)
+      x[i] = std::sin(0.37 * K.RowMap().GID64(i) + 0.1) + 0.2;
+    K.Multiply(false, x, y);
+    F.Apply(x, z);
+    // Σ_j |K_ij x_j| with x's ghosts: |K| |x| by Epetra on a copy of |K|.
+    Epetra_CrsMatrix absK(K);
+    for (int i = 0; i < absK.NumMyRows(); ++i)
+      {
+        int     n;
+        double *v;
+        absK.ExtractMyRowView(i, n, v);
+        for (int e = 0; e < n; ++e)
+          v[e] = std::abs(v[e]);
+      }
+    Epetra_Vector absx(x);
+    absx.Abs(x);
+    absK.Multiply(false, absx, bound);
+    double worst = 0, differs = 0;
+    for (int i = 0; i < y.MyLength(); ++i)
+      {
+        const double d = std::abs(z[i] - y[i]);
+        worst          = std::max(worst, d / (unit_roundoff * bound[i] + 1e-300));
+        differs        = std::max(differs, d > 0 ? 1. : 0.);
+      }
+    double all[2], mine[2] = {worst, differs};
+    K.Comm().MaxAll(mine, all, 2);
+    return {all[0], all[1] > 0};
+  }
+
+  void check_copy(anvil::testing::Checks &checks, const Epetra_CrsMatrix &K, const std::string &what)
+  {
+    const auto F = anvil::FloatBlockMatrix::make(K, 3);
+    checks(F != nullptr, what + ": nodal blocks of 3 found");
+    if (!F)
+      return;
+    const auto [worst, differs] = worst_ratio(K, *F);
+    std::ostringstream s, t;
+    s << what << ": |F x - K x| <= " << worst << " u sum |K x| row by row (<= 1.01)";
+    checks(worst <= 1.01, s.str());
+    checks(differs, what + ": the product is float's (some row differs from K x)");
+    double bytes = F->memory_consumption(), entries = K.NumMyNonzeros(), all[2], mine[2] = {bytes, entries};
+    K.Comm().SumAll(mine, all, 2);
+    t << what << ": " << all[0] / all[1] << " bytes per stored entry (<= 5)";
+    checks(all[0] / all[1] <= 5, t.str());
+  }
+} // namespace
+
+int main(int argc, char **argv)
+{
+  Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  anvil::testing::Checks           checks;
+  checks.print_on_this_process(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
+  const std::string scene = std::string(ANVIL_SOURCE_DIR) + "/tests/plastic_block.prm";
+
+  anvil_test::MechanicsFixture<3> block(scene, {{"Dimension", "3"},
+                                                {"Geometry/Blocks", "body: 0, 0, 0, 1, 0.5, 1, 8, 6, 8"},
+                                                {"Geometry/Random distortion", "0"},
+                                                {"Mechanics/Element", "standard"},
+                                                {"Boundary conditions/Displacement", "bottom: ux = 0, uy = 0, uz = 0"},
+                                                {"Boundary conditions/Pressure", ""}});
+  block.problem->assemble_system(true);
+  const auto &K = block.problem->get_system_matrix();
+  check_copy(checks, K.trilinos_matrix(), "fine K");
+  const auto space = anvil::make_coarse_space(block.problem->get_dof_handler(), block.problem->update_constraints(), K);
+  const auto Ac    = anvil::galerkin_product(K.trilinos_matrix(), space);
+  check_copy(checks, *Ac, "coarse A_1 = P^T K P");
+
+  // 7 rows: not nodes of 3 (on two processes: 4 and 3 rows, only one rank's share fails).
+  {
+    const unsigned int n = 7, p = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
+    const unsigned int P = Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD);
+    IndexSet           owned(n);
+    owned.add_range(P == 1 ? 0 : (p == 0 ? 0 : 4), P == 1 ? n : (p == 0 ? 4 : n));
+    DynamicSparsityPattern dsp(n, n, owned);
+    for (const auto i : owned)
+      dsp.add(i, i);
+    TrilinosWrappers::SparseMatrix S;
+    S.reinit(owned, owned, dsp, MPI_COMM_WORLD);
+    for (const auto i : owned)
+      S.set(i, i, 2.);
+    S.compress(VectorOperation::insert);
+    checks(anvil::FloatBlockMatrix::make(S.trilinos_matrix(), 3) == nullptr,
+           "7 rows: refused on every process");
+    IndexSet six(6);
+    six.add_range(P == 1 ? 0 : 3 * p, P == 1 ? 6 : 3 * p + 3);
+    DynamicSparsityPattern d6(6, 6, six);
+    for (const auto i : six)
+      d6.add(i, i);
+    TrilinosWrappers::SparseMatrix S6;
+    S6.reinit(six, six, d6, MPI_COMM_WORLD);
+    for (const auto i : six)
+      S6.set(i, i, 2.);
+    S6.compress(VectorOperation::insert);
+    checks(anvil::FloatBlockMatrix::make(S6.trilinos_matrix(), 3) != nullptr, "6 rows in nodes of 3: taken");
+  }
+  return checks.finish();
+}
