@@ -30,12 +30,11 @@ namespace anvil
 {
   /**
    * y = A x with A's entries rounded to float, x and y in double. Made by
-   * make() only when A has a nodal block structure of size @p block: the
-   * owned rows and the column map come in runs of @p block consecutive
-   * global indices starting at a multiple of @p block (deal.II's Q1^dim
-   * numbering, one vertex's dofs together; the coarse spaces' dim · node
-   * + component). Otherwise make() returns nullptr and the caller keeps A.
-   * A may be destroyed after make().
+   * make() only when A's owned rows come in nodes: runs of @p block
+   * consecutive global indices block·n … block·n + block − 1 (deal.II's
+   * Q1^dim numbering, one vertex's dofs together; the coarse spaces' dim ·
+   * node + component). Otherwise make() returns nullptr on every process
+   * and the caller keeps A. A may be destroyed after make().
    */
   class FloatBlockMatrix : public Epetra_Operator
   {
@@ -59,19 +58,19 @@ namespace anvil
 
   private:
     explicit FloatBlockMatrix(const Epetra_CrsMatrix &A, unsigned int block);
-    template <int B>
-    void multiply(const double *x, double *y) const;
 
     unsigned int block;
-    /// A's maps and import, copied: a middle level's A is freed once this
-    /// copy is made (only the coarser level's Galerkin product needed it).
-    std::unique_ptr<Epetra_Map>    domain, column_map;
+    /// A's domain, copied: a middle level's A is freed once this copy is
+    /// made (only the coarser level's Galerkin product needed it).
+    std::unique_ptr<Epetra_Map>    domain;
+    /// np > 1: the owned entries, then whole ghost nodes (the .cc says why).
+    std::unique_ptr<Epetra_Map>    column_map;
     std::unique_ptr<Epetra_Import> importer;
     /// Block row i's blocks: [row_start[i], row_start[i + 1]).
     std::vector<int>   row_start;
     /// A block's column: its first column's local index / block.
     std::vector<int>   columns;
-    /// block × block floats per block, row-major.
+    /// block × block floats per block, column-major (and `block` spare at the end).
     std::vector<float> values;
     /// x on A's column map (np > 1: owned and ghost entries).
     mutable std::unique_ptr<Epetra_Vector> x_columns;
