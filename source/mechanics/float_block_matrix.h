@@ -63,8 +63,12 @@ namespace anvil
     /// A's domain, copied: a middle level's A is freed once this copy is
     /// made (only the coarser level's Galerkin product needed it).
     std::unique_ptr<Epetra_Map>    domain;
-    /// np > 1: the owned entries, then whole ghost nodes (the .cc says why).
+    /// np > 1: the ghost nodes, whole (the .cc says why).
     std::unique_ptr<Epetra_Map>    column_map;
+    /// Block columns below this are owned (x's own entries), the rest ghosts.
+    int                            n_owned_blocks = 0;
+    /// Block row i's first block in a ghost column.
+    std::vector<int>               ghosts_from;
     std::unique_ptr<Epetra_Import> importer;
     /// Block row i's blocks: [row_start[i], row_start[i + 1]).
     std::vector<int>   row_start;
@@ -72,7 +76,7 @@ namespace anvil
     std::vector<int>   columns;
     /// block × block floats per block, column-major (and `block` spare at the end).
     std::vector<float> values;
-    /// x on A's column map (np > 1: owned and ghost entries).
+    /// x's ghost entries (np > 1).
     mutable std::unique_ptr<Epetra_Vector> x_columns;
   };
 } // namespace anvil
