@@ -98,25 +98,31 @@ namespace anvil
     std::vector<int> row_blocks;
     row_start.assign(n_block_rows + 1, 0);
     ghosts_from.assign(n_block_rows, 0);
+    // f(row in the block, position in x's layout, value) for block row i's entries.
+    const auto for_each_entry = [&](const int i, const auto &f) {
+      for (unsigned int r = 0; r < block; ++r)
+        {
+          int     n;
+          double *v;
+          int    *cols;
+          A.ExtractMyRowView(i * block + r, n, v, cols);
+          for (int e = 0; e < n; ++e)
+            f(r, position[cols[e]], v[e]);
+        }
+    };
     // Two passes: the blocks' columns (each row's in increasing order, so
     // that x is read forward), then the values into their slots.
     columns.reserve(A.NumMyNonzeros() / block + n_block_rows);
     for (int i = 0; i < n_block_rows; ++i)
       {
         row_blocks.clear();
-        for (unsigned int r = 0; r < block; ++r)
-          {
-            int     n;
-            double *v;
-            int    *cols;
-            A.ExtractMyRowView(i * block + r, n, v, cols);
-            for (int e = 0; e < n; ++e)
-              if (slot[position[cols[e]] / block] == -1)
-                {
-                  slot[position[cols[e]] / block] = 0;
-                  row_blocks.push_back(position[cols[e]] / block);
-                }
-          }
+        for_each_entry(i, [&](unsigned int, const int p, double) {
+          if (slot[p / block] == -1)
+            {
+              slot[p / block] = 0;
+              row_blocks.push_back(p / block);
+            }
+        });
         std::sort(row_blocks.begin(), row_blocks.end());
         for (const int k : row_blocks)
           slot[k] = -1;
@@ -134,18 +140,9 @@ namespace anvil
       {
         for (int s = row_start[i]; s < row_start[i + 1]; ++s)
           slot[columns[s]] = s;
-        for (unsigned int r = 0; r < block; ++r)
-          {
-            int     n;
-            double *v;
-            int    *cols;
-            A.ExtractMyRowView(i * block + r, n, v, cols);
-            for (int e = 0; e < n; ++e)
-              {
-                const int p = position[cols[e]];
-                values[std::size_t(slot[p / block]) * bb + (p % block) * block + r] = static_cast<float>(v[e]);
-              }
-          }
+        for_each_entry(i, [&](const unsigned int r, const int p, const double v) {
+          values[std::size_t(slot[p / block]) * bb + (p % block) * block + r] = static_cast<float>(v);
+        });
         for (int s = row_start[i]; s < row_start[i + 1]; ++s)
           slot[columns[s]] = -1;
       }
