@@ -9,7 +9,7 @@
 // uy in K's columns: checked to occur). The copy must be the float path
 // (some row differs from K x) and hold ≤ 6 bytes per stored entry (half
 // of Epetra's 12, on this small mesh with its many constrained dofs; ~4.5 at
-// 1 M DoFs). A matrix whose rows do not come in nodes (an odd row
+// 1 M DoFs). The same for a 2D K in blocks of 2. A matrix whose rows do not come in nodes (an odd row
 // count; on two processes one rank's share alone) is refused on every
 // process, so that GMRES sees one operator.
 #include <deal.II/base/mpi.h>
@@ -89,10 +89,11 @@ namespace
     return S;
   }
 
-  void check_copy(anvil::testing::Checks &checks, const Epetra_CrsMatrix &K, const std::string &what)
+  void check_copy(anvil::testing::Checks &checks, const Epetra_CrsMatrix &K, const std::string &what,
+                  const unsigned int block = 3)
   {
-    const auto F = anvil::FloatBlockMatrix::make(K, 3);
-    checks(F != nullptr, what + ": nodal blocks of 3 found");
+    const auto F = anvil::FloatBlockMatrix::make(K, block);
+    checks(F != nullptr, what + ": nodal blocks of " + std::to_string(block) + " found");
     if (!F)
       return;
     // Both kernels: the processor's (AVX2 and FMA where it has them) and the portable loop.
@@ -149,6 +150,18 @@ int main(int argc, char **argv)
   const auto space = anvil::make_coarse_space(block.problem->get_dof_handler(), block.problem->update_constraints(), K);
   const auto Ac    = anvil::galerkin_product(K.trilinos_matrix(), space);
   check_copy(checks, *Ac, "coarse A_1 = P^T K P");
+
+  // 2D: blocks of 2 (the portable kernel alone).
+  {
+    anvil_test::MechanicsFixture<2> plane(scene, {{"Dimension", "2"},
+                                                  {"Geometry/Blocks", "body: 0, 0, 1, 0.5, 12, 8"},
+                                                  {"Geometry/Random distortion", "0"},
+                                                  {"Mechanics/Element", "standard"},
+                                                  {"Boundary conditions/Displacement", "bottom: ux = 0, uy = 0; top: uy = 0"},
+                                                  {"Boundary conditions/Pressure", ""}});
+    plane.problem->assemble_system(true);
+    check_copy(checks, plane.problem->get_system_matrix().trilinos_matrix(), "2D K", 2);
+  }
 
   // 7 rows: not nodes of 3 (on two processes: 4 and 3 rows, only one rank's share fails).
   const unsigned int p = Utilities::MPI::this_mpi_process(MPI_COMM_WORLD);
