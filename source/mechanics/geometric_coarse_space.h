@@ -5,7 +5,9 @@
 // coarse correction on the Q1 space of the mesh one refinement coarser,
 // A_1 = Pᵀ K P, and so on: Chebyshev on D_ℓ⁻¹A_ℓ on each middle level ℓ,
 // ML V-cycles (one, or 2–3 on a large one) on the coarsest A_{L−1}; one
-// V-cycle per GMRES iteration.
+// V-cycle per GMRES iteration. The smoothed levels' products (Chebyshev, the
+// residuals) run on single-precision copies by nodal blocks
+// (float_block_matrix.h, session 26); GMRES's own product stays in double.
 // Two levels (session 20) cost P (~3.4 entries per fine row) and A_1 (1/8
 // of the rows, 27-node stencil), ~1/7 of K, against ML's smoothed
 // aggregation on 11 modes whose Galerkin product K·P alone peaks at

@@ -108,7 +108,9 @@ namespace anvil
     // the figures: doc/linear_solver.md, "Session 22: the default" and "Session 23".
     prm.declare_entry("Preconditioner", "automatic", Patterns::Selection("automatic|AMG|geometric"),
                       "The iterative solver's preconditioner. AMG: smoothed-aggregation algebraic "
-                      "multigrid (the AMG entries below). geometric: Chebyshev on the mesh and a coarse "
+                      "multigrid (the AMG entries below). geometric: Chebyshev on the mesh (its products and "
+                      "the cycle's residuals on single-precision copies of the levels by nodal blocks, "
+                      "GMRES's own products in double) and a coarse "
                       "correction on the Q1 space of the mesh one refinement coarser (Galerkin product, "
                       "itself smoothed and corrected the same way, one ML V-cycle with the AMG entries "
                       "below on the coarsest level); Q1 only, "
