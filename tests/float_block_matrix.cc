@@ -73,6 +73,18 @@ namespace
     return {all[0], all[1] > 0};
   }
 
+  /// The elastic block of @p cells, undistorted, standard Q1, the top's
+  /// normal displacement given (its nodes partial in K's columns).
+  anvil_test::Overrides elastic_block(const int dim, const std::string &cells, const std::string &displacement)
+  {
+    return {{"Dimension", std::to_string(dim)},
+            {"Geometry/Blocks", "body: " + cells},
+            {"Geometry/Random distortion", "0"},
+            {"Mechanics/Element", "standard"},
+            {"Boundary conditions/Displacement", displacement},
+            {"Boundary conditions/Pressure", ""}};
+  }
+
   /// 2 I on n rows, rows [begin, end) owned here.
   TrilinosWrappers::SparseMatrix diagonal(const unsigned int n, const unsigned int begin, const unsigned int end)
   {
@@ -123,12 +135,8 @@ int main(int argc, char **argv)
   checks.print_on_this_process(Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0);
   const std::string scene = std::string(ANVIL_SOURCE_DIR) + "/tests/plastic_block.prm";
 
-  anvil_test::MechanicsFixture<3> block(scene, {{"Dimension", "3"},
-                                                {"Geometry/Blocks", "body: 0, 0, 0, 1, 0.5, 1, 8, 6, 8"},
-                                                {"Geometry/Random distortion", "0"},
-                                                {"Mechanics/Element", "standard"},
-                                                {"Boundary conditions/Displacement", "bottom: ux = 0, uy = 0, uz = 0; top: uz = 0"},
-                                                {"Boundary conditions/Pressure", ""}});
+  anvil_test::MechanicsFixture<3> block(scene, elastic_block(3, "0, 0, 0, 1, 0.5, 1, 8, 6, 8",
+                                                             "bottom: ux = 0, uy = 0, uz = 0; top: uz = 0"));
   block.problem->assemble_system(true);
   const auto &K = block.problem->get_system_matrix();
   check_copy(checks, K.trilinos_matrix(), "fine K");
@@ -153,12 +161,7 @@ int main(int argc, char **argv)
 
   // 2D: blocks of 2 (the portable kernel alone).
   {
-    anvil_test::MechanicsFixture<2> plane(scene, {{"Dimension", "2"},
-                                                  {"Geometry/Blocks", "body: 0, 0, 1, 0.5, 12, 8"},
-                                                  {"Geometry/Random distortion", "0"},
-                                                  {"Mechanics/Element", "standard"},
-                                                  {"Boundary conditions/Displacement", "bottom: ux = 0, uy = 0; top: uy = 0"},
-                                                  {"Boundary conditions/Pressure", ""}});
+    anvil_test::MechanicsFixture<2> plane(scene, elastic_block(2, "0, 0, 1, 0.5, 12, 8", "bottom: ux = 0, uy = 0; top: uy = 0"));
     plane.problem->assemble_system(true);
     check_copy(checks, plane.problem->get_system_matrix().trilinos_matrix(), "2D K", 2);
   }

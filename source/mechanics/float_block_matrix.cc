@@ -58,43 +58,41 @@ namespace anvil
     // brings ux and uy alone, which would break the blocks; its uz is
     // imported too (a zero column of the block).
     const int         rows = A.NumMyRows(), n_columns = A.NumMyCols();
+    n_owned_blocks         = rows / block;
+    // position[j]: column j's place in x's layout (owned: its row; a ghost:
+    // after the owned rows, its node's place among the ghost nodes).
     std::vector<int>  position(n_columns);
-    std::vector<int>  padded(A.RowMap().MyGlobalElements(), A.RowMap().MyGlobalElements() + rows);
     std::vector<long> ghost_nodes;
     for (int j = 0; j < n_columns; ++j)
       {
         const long long gid = A.ColMap().GID64(j);
-        const int       lid = A.RowMap().LID(gid);
-        if (lid < 0)
+        position[j]         = A.RowMap().LID(gid);
+        if (position[j] < 0)
           ghost_nodes.push_back(gid / block);
       }
     std::sort(ghost_nodes.begin(), ghost_nodes.end());
     ghost_nodes.erase(std::unique(ghost_nodes.begin(), ghost_nodes.end()), ghost_nodes.end());
-    for (const long n : ghost_nodes)
-      for (unsigned int c = 0; c < block; ++c)
-        padded.push_back(static_cast<int>(n * block + c));
     for (int j = 0; j < n_columns; ++j)
-      {
-        const long long gid = A.ColMap().GID64(j);
-        const int       lid = A.RowMap().LID(gid);
-        position[j] =
-          lid >= 0 ? lid :
-                     rows + block * static_cast<int>(std::lower_bound(ghost_nodes.begin(), ghost_nodes.end(), gid / block) -
-                                                     ghost_nodes.begin()) +
-                       static_cast<int>(gid % block);
-      }
+      if (position[j] < 0)
+        {
+          const long long gid  = A.ColMap().GID64(j);
+          const auto      node = std::lower_bound(ghost_nodes.begin(), ghost_nodes.end(), gid / block);
+          position[j]          = block * (n_owned_blocks + static_cast<int>(node - ghost_nodes.begin())) + gid % block;
+        }
     // The ghosts alone are imported (an import into owned and ghost entries
     // copies the owned ones too: 3 % of np 2's products at 40³); the
     // product reads owned x from X itself.
-    n_owned_blocks = rows / block;
     if (A.Comm().NumProc() > 1)
       {
-        column_map = std::make_unique<Epetra_Map>(-1, static_cast<int>(padded.size() - rows), padded.data() + rows, 0,
-                                                  A.Comm());
+        std::vector<int> ghosts;
+        for (const long n : ghost_nodes)
+          for (unsigned int c = 0; c < block; ++c)
+            ghosts.push_back(static_cast<int>(n * block + c));
+        column_map = std::make_unique<Epetra_Map>(-1, static_cast<int>(ghosts.size()), ghosts.data(), 0, A.Comm());
         importer   = std::make_unique<Epetra_Import>(*column_map, *domain);
       }
     const int        n_block_rows = rows / block;
-    std::vector<int> slot(padded.size() / block, -1);
+    std::vector<int> slot(n_owned_blocks + ghost_nodes.size(), -1);
     std::vector<int> row_blocks;
     row_start.assign(n_block_rows + 1, 0);
     ghosts_from.assign(n_block_rows, 0);
@@ -112,7 +110,9 @@ namespace anvil
     };
     // Two passes: the blocks' columns (each row's in increasing order, so
     // that x is read forward), then the values into their slots.
-    columns.reserve(A.NumMyNonzeros() / block + n_block_rows);
+    // At least entries / block² blocks; a row's partial blocks (a Dirichlet
+    // dof's zero column) are few, so one spare per row rarely regrows.
+    columns.reserve(A.NumMyNonzeros() / (block * block) + n_block_rows);
     for (int i = 0; i < n_block_rows; ++i)
       {
         row_blocks.clear();

@@ -72,7 +72,7 @@ namespace anvil
     std::unique_ptr<Epetra_Import> importer;
     /// Block row i's blocks: [row_start[i], row_start[i + 1]).
     std::vector<int>   row_start;
-    /// A block's column: its first column's local index / block.
+    /// A block's column: its node in x's layout (owned nodes, then ghost nodes).
     std::vector<int>   columns;
     /// block × block floats per block, column-major (and `block` spare at the end).
     std::vector<float> values;
